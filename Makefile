@@ -1,0 +1,43 @@
+# Strand: `make run` (set-up, build, demo into out/) and `make test` (set-up, build, all tests).
+# As root, missing Debian packages are installed with apt-get; otherwise they are listed.
+
+DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev libcli11-dev \
+                   libgtest-dev libbenchmark-dev
+MAKEFLAGS += --no-print-directory
+BUILD_DIR := build
+STRAND := $(BUILD_DIR)/slicer/cli/strand
+CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release $(if $(CI),-DSTRAND_WERROR=ON,)
+
+.PHONY: all deps build run test bench clean
+
+all: build
+
+deps:
+	@missing=""; \
+	for p in $(DEBIAN_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  if [ "$$(id -u)" = "0" ]; then \
+	    echo "installing Debian packages:$$missing"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $$missing >/dev/null; \
+	  else \
+	    echo "missing Debian packages:$$missing -- run 'sudo apt-get install$$missing' or run make as root"; exit 1; \
+	  fi; \
+	fi
+
+build: deps
+	@cmake -S . -B $(BUILD_DIR) $(CMAKE_FLAGS) >/dev/null
+	@cmake --build $(BUILD_DIR) -j$$(nproc)
+
+run: build
+	@./samples/run_demo.sh $(STRAND) out
+
+test: build
+	@cd $(BUILD_DIR) && ctest --output-on-failure -j$$(nproc)
+
+bench: build
+	@$(BUILD_DIR)/tests/bench/strand_bench
+
+clean:
+	rm -rf $(BUILD_DIR) out

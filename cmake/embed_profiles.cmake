@@ -1,0 +1,12 @@
+# Writes OUT: a C++ table of the shipped machine profiles (name, JSON text).
+set(body "// Generated from machines/profiles/*.json; do not edit.\n#include \"machines/builtin_profiles.h\"\n\nnamespace strand::machines {\n\nconst std::vector<BuiltinProfile>& builtin_profiles() {\n  static const std::vector<BuiltinProfile> kProfiles = {\n")
+file(GLOB FILES ${DIR}/*.json)
+list(SORT FILES)
+foreach(f ${FILES})
+  get_filename_component(name ${f} NAME_WE)
+  file(READ ${f} text)
+  string(APPEND body "      {\"${name}\", R\"strand_json(${text})strand_json\"},\n")
+endforeach()
+string(APPEND body "  };\n  return kProfiles;\n}\n\n}  // namespace strand::machines\n")
+file(WRITE ${OUT}.new "${body}")
+execute_process(COMMAND ${CMAKE_COMMAND} -E copy_if_different ${OUT}.new ${OUT})

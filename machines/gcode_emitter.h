@@ -1,0 +1,26 @@
+// G-code emitter: MotionProgram -> text for one machine profile (firmware flavour and
+// deposition model). The only place that knows G-code words.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "machines/profile.h"
+#include "slicer/motion.h"
+
+namespace strand::machines {
+
+struct EmitOptions {
+  std::vector<std::string> header;  // comment lines (without ';') written first
+  // Preview-only copy: write computed relative E even where the machine takes none, so
+  // viewers that colour by extrusion show deposits. Never for printing.
+  bool viewer_e = false;
+};
+
+std::string emit_gcode(const slicer::MotionProgram& program, const MachineProfile& machine,
+                       const EmitOptions& options);
+
+// PrusaSlicer's viewer knows only its own role names in ;TYPE:; this maps ours onto them.
+std::string viewer_role(slicer::Feature f);
+
+}  // namespace strand::machines

@@ -1,0 +1,15 @@
+// Fixed-digit number formatting for G-code: 3 decimals for XYZ/IJ, 5 for E, 0 for F.
+// One formatter so output is byte-identical for identical input.
+#pragma once
+
+#include <string>
+
+namespace strand::machines {
+
+// Fixed-point text with `decimals` digits; never prints "-0.000".
+std::string fmt_fixed(double v, int decimals);
+inline std::string fmt_xyz(double mm) { return fmt_fixed(mm, 3); }
+inline std::string fmt_e(double e) { return fmt_fixed(e, 5); }
+inline std::string fmt_feed(double mm_per_min) { return fmt_fixed(mm_per_min, 0); }
+
+}  // namespace strand::machines

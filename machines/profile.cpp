@@ -1,0 +1,188 @@
+// Loading and validating machine profiles.
+#include "machines/profile.h"
+
+#include <algorithm>
+
+#include "machines/builtin_profiles.h"
+#include "machines/profile_schema.h"
+#include "slicer/file_io.h"
+#include "slicer/input_error.h"
+#include "slicer/units.h"
+
+namespace strand::machines {
+
+namespace {
+
+Vec3 vec3(const nlohmann::json& j) { return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>()); }
+Vec2 vec2(const nlohmann::json& j) { return Vec2(j[0].get<double>(), j[1].get<double>()); }
+
+std::vector<std::string> lines(const nlohmann::json& j, const char* key) {
+  if (!j.contains(key)) return {};
+  return j.at(key).get<std::vector<std::string>>();
+}
+
+BuildVolume read_volume(const nlohmann::json& k, const std::string& origin,
+                        std::vector<std::string>& problems) {
+  BuildVolume v;
+  if (k.at("type") == "delta") {
+    v.kind = KinematicsKind::Delta;
+    if (!k.contains("radius_mm")) problems.push_back(origin + ": kinematics.radius_mm: missing (required for delta)");
+    if (!k.contains("height_mm")) problems.push_back(origin + ": kinematics.height_mm: missing (required for delta)");
+    v.radius_mm = k.value("radius_mm", 0.0);
+    v.height_mm = k.value("height_mm", 0.0);
+    v.part_center_mm = Vec2::Zero();
+    v.min_mm = Vec3(-v.radius_mm, -v.radius_mm, 0.0);
+    v.max_mm = Vec3(v.radius_mm, v.radius_mm, v.height_mm);
+  } else {
+    v.kind = KinematicsKind::Cartesian;
+    if (!k.contains("min_mm") || !k.contains("max_mm")) {
+      problems.push_back(origin + ": kinematics.min_mm/max_mm: missing (required for cartesian)");
+      return v;
+    }
+    v.min_mm = vec3(k.at("min_mm"));
+    v.max_mm = vec3(k.at("max_mm"));
+    for (int i = 0; i < 3; ++i) {
+      if (v.max_mm[i] <= v.min_mm[i]) {
+        problems.push_back(origin + ": kinematics.max_mm: must exceed min_mm on every axis");
+        break;
+      }
+    }
+    v.height_mm = v.max_mm.z() - v.min_mm.z();
+    v.part_center_mm = k.contains("part_center_mm")
+                           ? vec2(k.at("part_center_mm"))
+                           : Vec2((v.min_mm.x() + v.max_mm.x()) / 2, (v.min_mm.y() + v.max_mm.y()) / 2);
+  }
+  return v;
+}
+
+DepositionModel model_from(const std::string& s) {
+  if (s == "manual-valve") return DepositionModel::ManualValve;
+  if (s == "valve") return DepositionModel::Valve;
+  if (s == "e-volumetric") return DepositionModel::EVolumetric;
+  return DepositionModel::None;
+}
+
+Deposition read_deposition(const nlohmann::json& d, const std::string& origin,
+                           std::vector<std::string>& problems) {
+  Deposition out;
+  out.model = model_from(d.at("model").get<std::string>());
+  out.lead_s = d.value("lead_s", 0.0);
+  out.lag_s = d.value("lag_s", 0.0);
+  out.message = d.value("message", std::string());
+  out.on_gcode = lines(d, "on_gcode");
+  out.off_gcode = lines(d, "off_gcode");
+  out.relative_e = d.value("relative_e", false);
+  out.prime_e = d.value("prime_e", 0.0);
+  out.retract_e = d.value("retract_e", 0.0);
+  out.reservoir_ml = d.value("reservoir_ml", 30.0);
+  if (d.contains("filament_diameter_mm")) {
+    const double fd = d.at("filament_diameter_mm").get<double>();
+    out.mm3_per_e = slicer::kPi * fd * fd / 4.0;
+  }
+  out.mm3_per_e = d.value("mm3_per_e", out.mm3_per_e);
+  if (out.model == DepositionModel::EVolumetric && !d.contains("mm3_per_e") &&
+      !d.contains("filament_diameter_mm")) {
+    problems.push_back(origin + ": deposition.mm3_per_e: missing (e-volumetric needs mm3_per_e or filament_diameter_mm)");
+  }
+  if (out.model == DepositionModel::Valve && (out.on_gcode.empty() || out.off_gcode.empty())) {
+    problems.push_back(origin + ": deposition.on_gcode/off_gcode: missing (required for valve)");
+  }
+  return out;
+}
+
+Firmware firmware_from(const std::string& s) {
+  if (s == "reprap") return Firmware::RepRap;
+  if (s == "klipper") return Firmware::Klipper;
+  if (s == "grbl") return Firmware::Grbl;
+  return Firmware::Marlin;
+}
+
+}  // namespace
+
+std::string to_string(Firmware f) {
+  switch (f) {
+    case Firmware::Marlin: return "marlin";
+    case Firmware::RepRap: return "reprap";
+    case Firmware::Klipper: return "klipper";
+    case Firmware::Grbl: return "grbl";
+  }
+  return "";
+}
+
+std::string to_string(DepositionModel m) {
+  switch (m) {
+    case DepositionModel::ManualValve: return "manual-valve";
+    case DepositionModel::Valve: return "valve";
+    case DepositionModel::EVolumetric: return "e-volumetric";
+    case DepositionModel::None: return "none";
+  }
+  return "";
+}
+
+MachineProfile profile_from_json(const nlohmann::json& j, const std::string& origin) {
+  std::vector<std::string> problems = check_profile_schema(j, origin);
+  if (!problems.empty()) throw InputError(problems);
+  MachineProfile p;
+  p.name = j.at("name").get<std::string>();
+  p.description = j.at("description").get<std::string>();
+  p.volume = read_volume(j.at("kinematics"), origin, problems);
+  p.firmware = firmware_from(j.at("firmware").at("flavour").get<std::string>());
+  p.arcs = j.at("firmware").at("arcs").get<bool>();
+  p.deposition = read_deposition(j.at("deposition"), origin, problems);
+  const auto lim = j.value("limits", nlohmann::json::object());
+  p.limits.max_feed_mm_per_min = lim.value("max_feed_mm_per_min", p.limits.max_feed_mm_per_min);
+  p.limits.travel_feed_mm_per_min = lim.value("travel_feed_mm_per_min", p.limits.travel_feed_mm_per_min);
+  p.limits.z_feed_mm_per_min = lim.value("z_feed_mm_per_min", p.limits.z_feed_mm_per_min);
+  p.limits.acceleration_mm_per_s2 = lim.value("acceleration_mm_per_s2", p.limits.acceleration_mm_per_s2);
+  p.limits.junction_deviation_mm = lim.value("junction_deviation_mm", p.limits.junction_deviation_mm);
+  p.travel_lift_mm = j.value("travel_lift_mm", p.travel_lift_mm);
+  p.start_gcode = lines(j, "start_gcode");
+  p.end_gcode = lines(j, "end_gcode");
+  p.source = j;
+  if (!problems.empty()) throw InputError(problems);
+  return p;
+}
+
+MachineProfile load_profile(const std::string& name_or_path) {
+  const bool is_path = name_or_path.find('/') != std::string::npos ||
+                       (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
+  std::string text;
+  if (is_path) {
+    try {
+      text = slicer::read_file(name_or_path);
+    } catch (const InputError&) {
+      throw InputError("machine = " + name_or_path + ": cannot read the profile file");
+    }
+  } else {
+    const auto& all = builtin_profiles();
+    auto it = std::find_if(all.begin(), all.end(),
+                           [&](const BuiltinProfile& b) { return name_or_path == b.name; });
+    if (it == all.end()) {
+      std::string names;
+      for (const auto& b : all) names += (names.empty() ? "" : ", ") + std::string(b.name);
+      throw InputError("machine = " + name_or_path + ": unknown machine (one of " + names +
+                       ", or a path to a .json profile)");
+    }
+    text = it->json;
+  }
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError("machine = " + name_or_path + ": malformed JSON at byte " +
+                     std::to_string(e.byte) + " (check commas, quotes and brackets)");
+  }
+  return profile_from_json(j, "machine " + name_or_path);
+}
+
+std::vector<std::pair<std::string, std::string>> list_profiles() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& b : builtin_profiles()) {
+    const auto j = nlohmann::json::parse(b.json);
+    out.emplace_back(b.name, j.value("description", std::string()));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace strand::machines

@@ -1,0 +1,86 @@
+// Machine profiles: kinematics, firmware flavour, deposition model, limits and start/end
+// templates, loaded from JSON (shipped ones by name, user ones by path).
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "slicer/geometry.h"
+
+namespace strand::machines {
+
+using slicer::Vec2;
+using slicer::Vec3;
+
+enum class KinematicsKind {
+  Delta,      // cylindrical build volume centred on (0, 0)
+  Cartesian,  // box from min_mm to max_mm
+};
+
+enum class Firmware { Marlin, RepRap, Klipper, Grbl };
+
+enum class DepositionModel {
+  ManualValve,  // operator opens the air valve by hand: flow never stops, no E words
+  Valve,        // controllable valve: on/off commands around each strand
+  EVolumetric,  // screw or piston extruder driven by the E axis
+  None,         // no flow words at all (the thesis' E0 files)
+};
+
+struct BuildVolume {
+  KinematicsKind kind = KinematicsKind::Cartesian;
+  double radius_mm = 0.0;         // delta: printable radius
+  double height_mm = 0.0;         // usable z
+  Vec3 min_mm = Vec3::Zero();     // cartesian box
+  Vec3 max_mm = Vec3::Zero();
+  Vec2 part_center_mm = Vec2::Zero();  // where parts are centred
+};
+
+struct Deposition {
+  DepositionModel model = DepositionModel::None;
+  double lead_s = 0.0;            // valve: open this long before moving; manual: wait at start
+  double lag_s = 0.0;             // valve: close this long before the strand ends
+  std::string message;            // manual valve: LCD message (M117)
+  std::vector<std::string> on_gcode;   // valve: commands that open it
+  std::vector<std::string> off_gcode;  // valve: commands that close it
+  double mm3_per_e = 1.0;         // e-volumetric: ink volume pushed by one E unit
+  bool relative_e = false;        // e-volumetric: M83 when true, M82 otherwise
+  double prime_e = 0.0;           // e-volumetric: E pushed once at start
+  double retract_e = 0.0;         // e-volumetric: suck-back at strand ends (0 = none)
+  double reservoir_ml = 30.0;     // syringe or tank volume, for refill estimates
+};
+
+struct Limits {
+  double max_feed_mm_per_min = 6000.0;
+  double travel_feed_mm_per_min = 3000.0;
+  double z_feed_mm_per_min = 600.0;
+  double acceleration_mm_per_s2 = 500.0;
+  double junction_deviation_mm = 0.05;
+};
+
+struct MachineProfile {
+  std::string name;
+  std::string description;
+  BuildVolume volume;
+  Firmware firmware = Firmware::Marlin;
+  bool arcs = false;                 // firmware accepts G2/G3
+  Deposition deposition;
+  Limits limits;
+  double travel_lift_mm = 1.0;       // z hop for travels between strands
+  std::vector<std::string> start_gcode;  // templates; {lead_s}, {lead_ms}, {message}
+  std::vector<std::string> end_gcode;
+  nlohmann::json source;             // the profile as loaded, for reports
+};
+
+// Loads a shipped profile by name, or a user profile from a path ending in .json.
+// Throws InputError naming the key path of every problem.
+MachineProfile load_profile(const std::string& name_or_path);
+// Parses and validates profile JSON; `origin` names the file in messages.
+MachineProfile profile_from_json(const nlohmann::json& j, const std::string& origin);
+// Names and one-line descriptions of the shipped profiles, sorted by name.
+std::vector<std::pair<std::string, std::string>> list_profiles();
+
+std::string to_string(Firmware f);
+std::string to_string(DepositionModel m);
+
+}  // namespace strand::machines

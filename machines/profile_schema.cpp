@@ -1,0 +1,161 @@
+// Schema for machine profile JSON, checked before any value is used.
+#include "machines/profile_schema.h"
+
+#include <optional>
+
+#include "slicer/params.h"
+
+namespace strand::machines {
+
+namespace {
+
+enum class T { Number, Bool, String, StringList, Vec2, Vec3, Object, FreeObject };
+
+struct Field {
+  const char* key;
+  T type;
+  bool required = false;
+  std::optional<double> min = std::nullopt;
+  std::optional<double> max = std::nullopt;
+  std::vector<std::string> choices = {};
+  std::vector<Field> children = {};
+};
+
+const std::vector<Field>& schema() {
+  static const std::vector<Field> kSchema = {
+      {"name", T::String, true},
+      {"description", T::String, true},
+      {"sources", T::FreeObject},
+      {"kinematics", T::Object, true, {}, {}, {},
+       {
+           {"type", T::String, true, {}, {}, {"delta", "cartesian"}},
+           {"radius_mm", T::Number, false, 1.0, 10000.0},
+           {"height_mm", T::Number, false, 1.0, 10000.0},
+           {"min_mm", T::Vec3},
+           {"max_mm", T::Vec3},
+           {"part_center_mm", T::Vec2},
+       }},
+      {"firmware", T::Object, true, {}, {}, {},
+       {
+           {"flavour", T::String, true, {}, {}, {"marlin", "reprap", "klipper", "grbl"}},
+           {"arcs", T::Bool, true},
+       }},
+      {"deposition", T::Object, true, {}, {}, {},
+       {
+           {"model", T::String, true, {}, {}, {"manual-valve", "valve", "e-volumetric", "none"}},
+           {"lead_s", T::Number, false, 0.0, 600.0},
+           {"lag_s", T::Number, false, 0.0, 60.0},
+           {"message", T::String},
+           {"on_gcode", T::StringList},
+           {"off_gcode", T::StringList},
+           {"mm3_per_e", T::Number, false, 1e-6, 1e6},
+           {"filament_diameter_mm", T::Number, false, 0.1, 100.0},
+           {"relative_e", T::Bool},
+           {"prime_e", T::Number, false, 0.0, 1000.0},
+           {"retract_e", T::Number, false, 0.0, 100.0},
+           {"reservoir_ml", T::Number, false, 0.1, 100000.0},
+       }},
+      {"limits", T::Object, false, {}, {}, {},
+       {
+           {"max_feed_mm_per_min", T::Number, false, 1.0, 1e6},
+           {"travel_feed_mm_per_min", T::Number, false, 1.0, 1e6},
+           {"z_feed_mm_per_min", T::Number, false, 1.0, 1e6},
+           {"acceleration_mm_per_s2", T::Number, false, 1.0, 1e6},
+           {"junction_deviation_mm", T::Number, false, 0.0, 10.0},
+       }},
+      {"travel_lift_mm", T::Number, false, 0.0, 100.0},
+      {"start_gcode", T::StringList},
+      {"end_gcode", T::StringList},
+  };
+  return kSchema;
+}
+
+const char* type_rule(T t) {
+  switch (t) {
+    case T::Number: return "must be a number";
+    case T::Bool: return "must be true or false";
+    case T::String: return "must be a string";
+    case T::StringList: return "must be a list of strings";
+    case T::Vec2: return "must be [x, y] in mm";
+    case T::Vec3: return "must be [x, y, z] in mm";
+    case T::Object:
+    case T::FreeObject: return "must be an object";
+  }
+  return "";
+}
+
+bool numbers(const nlohmann::json& v, std::size_t n) {
+  if (!v.is_array() || v.size() != n) return false;
+  for (const auto& e : v) {
+    if (!e.is_number()) return false;
+  }
+  return true;
+}
+
+bool type_ok(T t, const nlohmann::json& v) {
+  switch (t) {
+    case T::Number: return v.is_number();
+    case T::Bool: return v.is_boolean();
+    case T::String: return v.is_string();
+    case T::StringList:
+      if (!v.is_array()) return false;
+      for (const auto& e : v) {
+        if (!e.is_string()) return false;
+      }
+      return true;
+    case T::Vec2: return numbers(v, 2);
+    case T::Vec3: return numbers(v, 3);
+    case T::Object:
+    case T::FreeObject: return v.is_object();
+  }
+  return false;
+}
+
+void check(const std::vector<Field>& fields, const nlohmann::json& j, const std::string& prefix,
+           const std::string& origin, std::vector<std::string>& out) {
+  for (const auto& [key, value] : j.items()) {
+    bool known = false;
+    for (const auto& f : fields) known = known || key == f.key;
+    if (!known) out.push_back(origin + ": " + prefix + key + ": unknown key");
+  }
+  for (const auto& f : fields) {
+    const std::string path = prefix + f.key;
+    if (!j.contains(f.key)) {
+      if (f.required) out.push_back(origin + ": " + path + ": missing (required)");
+      continue;
+    }
+    const auto& v = j.at(f.key);
+    if (!type_ok(f.type, v)) {
+      out.push_back(origin + ": " + path + " = " + v.dump() + ": " + type_rule(f.type));
+      continue;
+    }
+    if (f.type == T::Number) {
+      const double x = v.get<double>();
+      if ((f.min && x < *f.min) || (f.max && x > *f.max)) {
+        out.push_back(origin + ": " + path + " = " + v.dump() + ": must be in [" +
+                      slicer::short_number(*f.min) + ", " + slicer::short_number(*f.max) + "]");
+      }
+    }
+    if (f.type == T::String && !f.choices.empty()) {
+      bool ok = false;
+      std::string list;
+      for (const auto& c : f.choices) {
+        ok = ok || c == v.get<std::string>();
+        list += (list.empty() ? "" : ", ") + c;
+      }
+      if (!ok) out.push_back(origin + ": " + path + " = " + v.dump() + ": must be one of " + list);
+    }
+    if (f.type == T::Object) check(f.children, v, path + ".", origin, out);
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> check_profile_schema(const nlohmann::json& j, const std::string& origin) {
+  std::vector<std::string> out;
+  if (!j.is_object()) return {origin + ": the profile must be a JSON object"};
+  check(schema(), j, "", origin, out);
+  return out;
+}
+
+}  // namespace strand::machines

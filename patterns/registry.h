@@ -1,0 +1,26 @@
+// The generators the CLI and job files can run, by name.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "slicer/params.h"
+#include "slicer/toolpath.h"
+
+namespace strand::patterns {
+
+struct GeneratorSpec {
+  std::string name;     // CLI sub-command and job "generator"
+  std::string summary;  // one line for --help
+  const slicer::ParamTable& (*table)();
+  // Builds the toolpath from values already checked by resolve_params; checks the rules
+  // that tie parameters together and throws InputError listing every violation.
+  slicer::Toolpath (*generate)(const nlohmann::json& values);
+};
+
+const std::vector<GeneratorSpec>& generators();
+// nullptr when there is no generator of that name.
+const GeneratorSpec* find_generator(const std::string& name);
+
+}  // namespace strand::patterns

@@ -1,0 +1,245 @@
+// Log-pile scaffold geometry. Each layer: parallel lines clipped to the footprint grown by
+// the overhang, joined into one serpentine by connectors that run along that grown
+// rectangle, so every U-turn lies outside the footprint and nothing crosses. Layers after
+// the first begin with a link that runs further out, from the previous layer's end to the
+// nearest possible start of the new serpentine.
+#include "patterns/scaffold.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include "slicer/tolerances.h"
+#include "slicer/units.h"
+
+namespace strand::patterns {
+
+using slicer::Feature;
+using slicer::Segment;
+using slicer::Stroke;
+using slicer::Vec2;
+
+namespace {
+
+// Axis-aligned rectangle centred on the origin, walked counter-clockwise from (hx, -hy).
+struct Rect {
+  double hx = 0.0;
+  double hy = 0.0;
+  double perimeter() const { return 4.0 * (hx + hy); }
+  std::array<Vec2, 4> corners() const {  // at t = 2hy, 2hy+2hx, 4hy+2hx, 0 (= perimeter)
+    return {Vec2(hx, hy), Vec2(-hx, hy), Vec2(-hx, -hy), Vec2(hx, -hy)};
+  }
+  std::array<double, 4> corner_params() const {
+    return {2 * hy, 2 * hy + 2 * hx, 4 * hy + 2 * hx, perimeter()};
+  }
+};
+
+// Perimeter parameter of a point on the rectangle's boundary.
+double param_of(const Rect& r, const Vec2& p) {
+  const double dx_right = std::abs(p.x() - r.hx), dy_top = std::abs(p.y() - r.hy);
+  const double dx_left = std::abs(p.x() + r.hx), dy_bottom = std::abs(p.y() + r.hy);
+  const double m = std::min({dx_right, dy_top, dx_left, dy_bottom});
+  if (m == dx_right) return p.y() + r.hy;
+  if (m == dy_top) return 2 * r.hy + (r.hx - p.x());
+  if (m == dx_left) return 2 * r.hy + 2 * r.hx + (r.hy - p.y());
+  return 4 * r.hy + 2 * r.hx + (p.x() + r.hx);
+}
+
+Vec2 outward_normal(const Rect& r, const Vec2& p) {
+  const double t = param_of(r, p);
+  const auto c = r.corner_params();
+  if (t < c[0]) return Vec2(1, 0);
+  if (t < c[1]) return Vec2(0, 1);
+  if (t < c[2]) return Vec2(-1, 0);
+  return Vec2(0, -1);
+}
+
+double wrap(double t, double period) {
+  t = std::fmod(t, period);
+  return t < 0 ? t + period : t;
+}
+
+// Corners passed when walking the boundary from `from` to `to`, then `to` itself.
+std::vector<Vec2> walk(const Rect& r, const Vec2& from, const Vec2& to, bool ccw) {
+  const double per = r.perimeter();
+  const double t0 = param_of(r, from);
+  const double dist = ccw ? wrap(param_of(r, to) - t0, per) : wrap(t0 - param_of(r, to), per);
+  const auto corners = r.corners();
+  const auto cp = r.corner_params();
+  std::vector<std::pair<double, Vec2>> passed;
+  for (int i = 0; i < 4; ++i) {
+    const double along = ccw ? wrap(cp[i] - t0, per) : wrap(t0 - cp[i], per);
+    if (along > 1e-9 && along < dist - 1e-9) passed.emplace_back(along, corners[i]);
+  }
+  std::sort(passed.begin(), passed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<Vec2> out;
+  for (const auto& p : passed) out.push_back(p.second);
+  out.push_back(to);
+  return out;
+}
+
+// Is `t` strictly inside the ccw (or cw) walk from t0 to t1?
+bool on_walk(double per, double t0, double t1, double t, bool ccw) {
+  const double dist = ccw ? wrap(t1 - t0, per) : wrap(t0 - t1, per);
+  const double along = ccw ? wrap(t - t0, per) : wrap(t0 - t, per);
+  return along > 1e-9 && along < dist - 1e-9;
+}
+
+// Parameter range [s0, s1] of the line c*n + s*u inside the rectangle; empty if s0 > s1.
+std::pair<double, double> clip(const Rect& r, const Vec2& n, const Vec2& u, double c) {
+  double s0 = -std::numeric_limits<double>::infinity(), s1 = -s0;
+  const Vec2 base = c * n;
+  const double half[2] = {r.hx, r.hy};
+  for (int k = 0; k < 2; ++k) {
+    if (std::abs(u[k]) < 1e-12) {
+      if (std::abs(base[k]) > half[k] + 1e-9) return {1, 0};
+      continue;
+    }
+    double a = (-half[k] - base[k]) / u[k], b = (half[k] - base[k]) / u[k];
+    if (a > b) std::swap(a, b);
+    s0 = std::max(s0, a);
+    s1 = std::min(s1, b);
+  }
+  return {s0, s1};
+}
+
+struct LayerLines {
+  Vec2 u, n;
+  std::vector<std::pair<Vec2, Vec2>> ends;  // (u- end, u+ end) on the grown rectangle
+  double inside_length_mm = 0.0;            // filament length inside the footprint
+};
+
+LayerLines layer_lines(const ScaffoldParams& p, const ScaffoldGeometry& g, double angle_deg) {
+  LayerLines L;
+  const double a = slicer::deg_to_rad(angle_deg);
+  L.u = Vec2(std::cos(a), std::sin(a));
+  L.n = Vec2(-std::sin(a), std::cos(a));
+  const Rect foot{g.width_mm / 2, g.depth_mm / 2};
+  const Rect grown{foot.hx + p.overhang_mm, foot.hy + p.overhang_mm};
+  const double extent = g.width_mm * std::abs(L.n.x()) + g.depth_mm * std::abs(L.n.y());
+  const int count = static_cast<int>(std::floor((extent - p.nozzle_mm) / p.pitch_mm + 1e-9)) + 1;
+  for (int i = 0; i < count; ++i) {
+    const double c = (i - (count - 1) / 2.0) * p.pitch_mm;
+    const auto [s0, s1] = clip(grown, L.n, L.u, c);
+    const auto [f0, f1] = clip(foot, L.n, L.u, c);
+    L.ends.emplace_back(c * L.n + s0 * L.u, c * L.n + s1 * L.u);
+    L.inside_length_mm += std::max(0.0, f1 - f0);
+  }
+  return L;
+}
+
+// One serpentine over the lines; `reverse_order` starts from the last line, `flip` starts
+// the first line at its u+ end.
+Stroke serpentine(const LayerLines& L, const Rect& grown, bool reverse_order, bool flip) {
+  const int n = static_cast<int>(L.ends.size());
+  auto line = [&](int k) { return L.ends[static_cast<std::size_t>(reverse_order ? n - 1 - k : k)]; };
+  Stroke s;
+  const double per = grown.perimeter();
+  for (int k = 0; k < n; ++k) {
+    const auto [lo, hi] = line(k);
+    const bool forward = (k % 2 == 0) != flip;
+    const Vec2 from = forward ? lo : hi;
+    const Vec2 to = forward ? hi : lo;
+    if (k == 0) {
+      s.start_mm = from;
+    } else {
+      const Vec2 at = s.end_mm();
+      const auto [plo, phi] = line(k - 1);
+      const Vec2 far_prev = forward ? phi : plo;  // the other ends must stay off the walk
+      const Vec2 far_next = to;
+      const double t0 = param_of(grown, at), t1 = param_of(grown, from);
+      const bool ccw = !on_walk(per, t0, t1, param_of(grown, far_prev), true) &&
+                       !on_walk(per, t0, t1, param_of(grown, far_next), true);
+      for (const Vec2& q : walk(grown, at, from, ccw)) s.segments.push_back(slicer::line_to(q, Feature::Infill));
+    }
+    s.segments.push_back(slicer::line_to(to, Feature::Infill));
+  }
+  return s;
+}
+
+// Link from `from` (end of the previous layer) to `to` (start of this one), outside.
+std::vector<Segment> link(const Rect& grown, double clearance, const Vec2& from, const Vec2& to) {
+  std::vector<Segment> out;
+  if ((from - to).norm() < slicer::kSamePointMm) return out;
+  const Rect outer{grown.hx + clearance, grown.hy + clearance};
+  const Vec2 a = from + clearance * outward_normal(grown, from);
+  const Vec2 b = to + clearance * outward_normal(grown, to);
+  const double per = outer.perimeter();
+  const bool ccw = wrap(param_of(outer, b) - param_of(outer, a), per) <= per / 2;
+  out.push_back(slicer::line_to(a, Feature::Link));
+  for (const Vec2& q : walk(outer, a, b, ccw)) out.push_back(slicer::line_to(q, Feature::Link));
+  out.push_back(slicer::line_to(to, Feature::Link));
+  return out;
+}
+
+double bead_area(const ScaffoldParams& p) { return slicer::bead_area_mm2(p.nozzle_mm, p.layer_height_mm); }
+
+}  // namespace
+
+ScaffoldGeometry scaffold_geometry(const ScaffoldParams& p) {
+  ScaffoldGeometry g;
+  auto count = [&](double side) {
+    return std::max(2, static_cast<int>(std::lround((side - p.nozzle_mm) / p.pitch_mm)) + 1);
+  };
+  g.filaments_x = count(p.width_mm);
+  g.filaments_y = count(p.depth_mm);
+  g.width_mm = (g.filaments_x - 1) * p.pitch_mm + p.nozzle_mm;
+  g.depth_mm = (g.filaments_y - 1) * p.pitch_mm + p.nozzle_mm;
+  g.height_mm = p.layers * p.layer_height_mm;
+  g.link_clearance_mm = p.pitch_mm;
+  return g;
+}
+
+slicer::Toolpath generate_scaffold(const ScaffoldParams& p) {
+  const ScaffoldGeometry g = scaffold_geometry(p);
+  const Rect grown{g.width_mm / 2 + p.overhang_mm, g.depth_mm / 2 + p.overhang_mm};
+  slicer::Toolpath t;
+  t.generator = "scaffold";
+  double inside_length = 0.0;
+  nlohmann::json per_layer = nlohmann::json::array();
+  for (int k = 0; k < p.layers; ++k) {
+    const double angle = p.angles_deg[static_cast<std::size_t>(k) % p.angles_deg.size()];
+    const LayerLines lines = layer_lines(p, g, angle);
+    inside_length += lines.inside_length_mm;
+    Stroke best;
+    double best_gap = std::numeric_limits<double>::infinity();
+    const Vec2 prev_end = k == 0 ? Vec2::Zero() : t.layers.back().strokes.back().end_mm();
+    for (int variant = 0; variant < (k == 0 ? 1 : 4); ++variant) {
+      Stroke s = serpentine(lines, grown, variant & 1, variant & 2);
+      const double gap = (s.start_mm - prev_end).norm();
+      if (gap < best_gap - 1e-9) best_gap = gap, best = s;
+    }
+    Stroke stroke = best;
+    if (k > 0) {
+      std::vector<Segment> segs = link(grown, g.link_clearance_mm, prev_end, best.start_mm);
+      segs.insert(segs.end(), best.segments.begin(), best.segments.end());
+      stroke.start_mm = prev_end;
+      stroke.segments = segs;
+    }
+    stroke.width_mm = p.nozzle_mm;
+    stroke.height_mm = p.layer_height_mm;
+    t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, {stroke}});
+    if (k < static_cast<int>(p.angles_deg.size())) per_layer.push_back(lines.ends.size());
+  }
+  const double solid = inside_length * bead_area(p);
+  const double box = g.width_mm * g.depth_mm * g.height_mm;
+  t.derived = {
+      {"footprint_mm", {g.width_mm, g.depth_mm}},
+      {"filaments_per_layer", per_layer},
+      {"layers", p.layers},
+      {"height_mm", g.height_mm},
+      {"layer_height_mm", p.layer_height_mm},
+      {"pitch_mm", p.pitch_mm},
+      {"gap_mm", p.pitch_mm - p.nozzle_mm},
+      {"overhang_mm", p.overhang_mm},
+      {"link_clearance_mm", g.link_clearance_mm},
+      {"bead_area_mm2", bead_area(p)},
+      {"porosity", 1.0 - solid / box},
+      {"porosity_formula",
+       "1 - (filament length inside the footprint * bead area) / (width * depth * height)"},
+  };
+  return t;
+}
+
+}  // namespace strand::patterns

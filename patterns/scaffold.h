@@ -1,0 +1,46 @@
+// Log-pile scaffold (thesis, appendix "scaffold.m"): parallel filaments rotated per layer,
+// each layer one continuous serpentine whose U-turns lie outside the footprint.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "slicer/params.h"
+#include "slicer/toolpath.h"
+
+namespace strand::patterns {
+
+struct ScaffoldParams {
+  double nozzle_mm = 0.84;        // filament diameter d
+  double pitch_mm = 2.44;         // centre-to-centre spacing = gap + d
+  double width_mm = 36.0;         // requested footprint along x
+  double depth_mm = 36.0;         // requested footprint along y
+  int layers = 15;
+  double layer_height_mm = 0.7392;  // 0.88 d by default
+  double overhang_mm = 0.84;      // how far U-turns stick out of the footprint
+  std::vector<double> angles_deg = {0.0, 90.0};
+  double speed_mm_per_min = 250.0;
+};
+
+// Sizes derived from the parameters, computed in one place.
+// --size is rounded to the nearest whole number of pitches: a side holding N filaments
+// measures (N - 1) * pitch + nozzle, edge to edge, with N >= 2.
+struct ScaffoldGeometry {
+  int filaments_x = 0;            // filaments laid along y, spread across x
+  int filaments_y = 0;            // filaments laid along x, spread across y
+  double width_mm = 0.0;          // actual footprint, edge to edge of the outer filaments
+  double depth_mm = 0.0;
+  double height_mm = 0.0;         // layers * layer height
+  double link_clearance_mm = 0.0; // layer links run this far outside the U-turns
+};
+
+ScaffoldGeometry scaffold_geometry(const ScaffoldParams& p);
+// Layers centred on (0, 0); layer k at z = (k + 1) * layer height.
+slicer::Toolpath generate_scaffold(const ScaffoldParams& p);
+
+// Parameter table (CLI flags and job keys) and the checked conversion from its values.
+const slicer::ParamTable& scaffold_table();
+ScaffoldParams scaffold_params_from(const nlohmann::json& values);
+slicer::Toolpath scaffold_from_values(const nlohmann::json& values);
+
+}  // namespace strand::patterns

@@ -1,0 +1,28 @@
+// Planning: Toolpath (part frame) -> MotionProgram (machine frame). Places the part,
+// segments arcs where the firmware forbids G2/G3, assigns per-feature speeds and deposit
+// volumes, and adds travels (with a z lift) between strokes.
+#pragma once
+
+#include <map>
+
+#include "machines/profile.h"
+#include "slicer/motion.h"
+#include "slicer/toolpath.h"
+
+namespace strand::post {
+
+struct PlanOptions {
+  double speed_mm_per_min = 250.0;          // base deposit speed
+  double arc_tolerance_mm = 0.01;           // chord error when arcs are segmented
+  std::map<slicer::Feature, double> speed_factors;  // missing feature = 1.0
+};
+
+// Reads "speed" and "<feature>-speed-factor" from the toolpath's parameters.
+PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm);
+
+// Plans the toolpath for the machine and checks the result fits its build volume
+// (throws InputError otherwise).
+slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachineProfile& machine,
+                           const PlanOptions& options);
+
+}  // namespace strand::post

@@ -1,0 +1,25 @@
+// One job end to end after generation: plan, estimate, emit G-code with its header, report.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "machines/profile.h"
+#include "postprocess/planner.h"
+#include "slicer/motion.h"
+#include "slicer/toolpath.h"
+
+namespace strand::post {
+
+struct Produced {
+  std::string gcode;
+  nlohmann::json report;
+  std::string summary;
+  slicer::MotionProgram program;
+};
+
+// `gcode_path` is only recorded in the report. Throws InputError if the part does not fit.
+Produced produce(const slicer::Toolpath& t, const machines::MachineProfile& m,
+                 const PlanOptions& options, const std::string& gcode_path);
+
+}  // namespace strand::post

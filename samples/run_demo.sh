@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# The main demo: runs every job file in samples/ into OUT (G-code, JSON report, summary).
+# Usage: samples/run_demo.sh path/to/strand OUT
+set -euo pipefail
+strand="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
+samples="$(cd "$(dirname "$0")" && pwd)"
+out="$2"
+mkdir -p "$out"
+cd "$out"
+for job in "$samples"/*.json; do
+  name="$(basename "$job" .json)"
+  "$strand" job "$job" -o "$name.gcode" --report "$name.json" | tee "$name-summary.txt"
+done
+echo "demo output in $(pwd)"

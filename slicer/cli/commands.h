@@ -1,0 +1,17 @@
+// Sub-command registration for the `strand` CLI. Each adder wires flags to a handler that
+// throws InputError for bad input; main() turns that into one line and exit code 2.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace strand::cli {
+
+// Set by the chosen sub-command; returns the process exit code.
+using Action = std::function<int()>;
+
+void add_generator_commands(CLI::App& app, Action& action);
+void add_job_command(CLI::App& app, Action& action);
+void add_machines_command(CLI::App& app, Action& action);
+
+}  // namespace strand::cli

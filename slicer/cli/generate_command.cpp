@@ -1,0 +1,160 @@
+// `strand <generator>`: flags from the generator's parameter table, then generate, plan,
+// emit, write atomically, report.
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "machines/profile.h"
+#include "patterns/registry.h"
+#include "postprocess/produce.h"
+#include "slicer/cli/commands.h"
+#include "slicer/file_io.h"
+#include "slicer/input_error.h"
+#include "slicer/params.h"
+#include "slicer/tolerances.h"
+
+namespace strand::cli {
+
+namespace {
+
+struct GenerateArgs {
+  std::map<std::string, std::string> text;         // flag -> raw text
+  std::map<std::string, CLI::Option*> options;
+  std::string machine = "deltawasp-2040-clay";
+  std::string output;
+  std::string report;
+  double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+};
+
+std::string help_for(const slicer::ParamDef& d) {
+  std::string h = d.help;
+  if (!d.unit.empty()) h += " [" + d.unit + "]";
+  if (!d.default_value.is_null()) {
+    h += " (default " + (d.default_value.is_string() ? d.default_value.get<std::string>()
+                                                     : d.default_value.dump()) + ")";
+  } else if (!d.default_text.empty()) {
+    h += " (default " + d.default_text + ")";
+  }
+  return h;
+}
+
+struct JobSettings {
+  std::string machine = "deltawasp-2040-clay";
+  std::string output;
+  std::string report;
+  double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+};
+
+// The shared tail of `strand <generator>` and `strand job`: nothing is written unless
+// every step succeeded.
+int run_job(const patterns::GeneratorSpec& spec, const nlohmann::json& given, const JobSettings& s) {
+  if (!(s.arc_tolerance_mm > 0.0 && s.arc_tolerance_mm <= 1.0)) {
+    throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) + ": must be in (0, 1] (mm)");
+  }
+  const nlohmann::json values = slicer::resolve_params(spec.table(), given);
+  const slicer::Toolpath t = spec.generate(values);
+  const machines::MachineProfile machine = machines::load_profile(s.machine);
+  const std::string out = s.output.empty() ? spec.name + ".gcode" : s.output;
+  const auto produced =
+      post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm), out);
+  const std::string report = produced.report.dump(2) + "\n";
+  slicer::write_file_atomic(out, produced.gcode);
+  if (!s.report.empty()) slicer::write_file_atomic(s.report, report);
+  std::cout << produced.summary;
+  return 0;
+}
+
+int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
+  const auto& table = spec.table();
+  nlohmann::json given = nlohmann::json::object();
+  for (const auto& d : table.defs) {
+    if (a.options.at(d.key)->count() > 0) given[d.key] = slicer::parse_param_text(table, d, a.text.at(d.key));
+  }
+  return run_job(spec, given, {a.machine, a.output, a.report, a.arc_tolerance_mm});
+}
+
+// Job file: {"generator", "machine", "params": {flag: value}, "output", "report",
+// "arc-tolerance"}; relative output paths are relative to the current directory.
+nlohmann::json read_job(const std::string& path) {
+  try {
+    return nlohmann::json::parse(slicer::read_file(path));
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError("job = " + path + ": malformed JSON at byte " + std::to_string(e.byte));
+  }
+}
+
+int run_job_json(const nlohmann::json& j, const std::string& path) {
+  if (!j.is_object()) throw InputError("job = " + path + ": must be a JSON object");
+  std::vector<std::string> problems;
+  for (const auto& [k, v] : j.items()) {
+    if (k != "generator" && k != "machine" && k != "params" && k != "output" && k != "report" &&
+        k != "arc-tolerance" && k != "description") {
+      problems.push_back("job." + k + ": unknown key (generator, machine, params, output, report, arc-tolerance, description)");
+    }
+  }
+  if (!problems.empty()) throw InputError(problems);
+  const std::string name = j.value("generator", std::string());
+  const patterns::GeneratorSpec* spec = patterns::find_generator(name);
+  if (!spec) {
+    std::string names;
+    for (const auto& g : patterns::generators()) names += (names.empty() ? "" : ", ") + g.name;
+    throw InputError("job.generator = " + name + ": must be one of " + names);
+  }
+  JobSettings s;
+  s.machine = j.value("machine", s.machine);
+  s.output = j.value("output", std::string());
+  s.report = j.value("report", std::string());
+  s.arc_tolerance_mm = j.value("arc-tolerance", s.arc_tolerance_mm);
+  return run_job(*spec, j.value("params", nlohmann::json::object()), s);
+}
+
+}  // namespace
+
+void add_generator_commands(CLI::App& app, Action& action) {
+  for (const auto& spec : patterns::generators()) {
+    auto args = std::make_shared<GenerateArgs>();
+    CLI::App* sub = app.add_subcommand(spec.name, spec.summary);
+    for (const auto& d : spec.table().defs) {
+      args->options[d.key] = sub->add_option("--" + d.key, args->text[d.key], help_for(d));
+    }
+    sub->add_option("--machine", args->machine, "machine profile name or path to a .json profile (default deltawasp-2040-clay)");
+    sub->add_option("-o,--output", args->output, "G-code file to write (default " + spec.name + ".gcode)");
+    sub->add_option("--report", args->report, "write a JSON report here");
+    sub->add_option("--arc-tolerance", args->arc_tolerance_mm,
+                    "max chord error when arcs become G1 segments [mm] (default 0.01)");
+    const patterns::GeneratorSpec* s = &spec;
+    sub->callback([&action, s, args] { action = [s, args] { return run_generator(*s, *args); }; });
+  }
+}
+
+void add_job_command(CLI::App& app, Action& action) {
+  CLI::App* sub = app.add_subcommand("job", "run a generator from a JSON job file");
+  auto path = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
+  auto report = std::make_shared<std::string>();
+  sub->add_option("spec", *path, "job file (JSON)")->required();
+  sub->add_option("-o,--output", *output, "override the job's output path");
+  sub->add_option("--report", *report, "override the job's report path");
+  sub->callback([&action, path, output, report] {
+    action = [path, output, report] {
+      nlohmann::json j = read_job(*path);
+      if (j.is_object() && !output->empty()) j["output"] = *output;
+      if (j.is_object() && !report->empty()) j["report"] = *report;
+      return run_job_json(j, *path);
+    };
+  });
+}
+
+void add_machines_command(CLI::App& app, Action& action) {
+  CLI::App* sub = app.add_subcommand("machines", "list the shipped machine profiles");
+  sub->callback([&action] {
+    action = [] {
+      for (const auto& [name, description] : machines::list_profiles()) {
+        std::cout << name << "  " << description << "\n";
+      }
+      return 0;
+    };
+  });
+}
+
+}  // namespace strand::cli

@@ -1,0 +1,75 @@
+#include "machines/profile.h"
+
+#include <gtest/gtest.h>
+
+#include "slicer/input_error.h"
+
+namespace strand::machines {
+namespace {
+
+TEST(Profiles, EveryShippedProfileLoadsAndValidates) {
+  const auto all = list_profiles();
+  ASSERT_GE(all.size(), 2u);
+  for (const auto& [name, description] : all) {
+    SCOPED_TRACE(name);
+    const MachineProfile p = load_profile(name);
+    EXPECT_EQ(p.name, name);
+    EXPECT_FALSE(description.empty());
+    EXPECT_TRUE(p.source.contains("sources")) << "every profile documents its values";
+  }
+}
+
+TEST(Profiles, DeltaWaspIsOneHundredMmRadiusWithoutArcs) {
+  const MachineProfile p = load_profile("deltawasp-2040-clay");
+  EXPECT_EQ(p.volume.kind, KinematicsKind::Delta);
+  EXPECT_DOUBLE_EQ(p.volume.radius_mm, 100.0);
+  EXPECT_DOUBLE_EQ(p.volume.height_mm, 400.0);
+  EXPECT_FALSE(p.arcs);
+  EXPECT_EQ(p.deposition.model, DepositionModel::ManualValve);
+}
+
+std::string error_of(const nlohmann::json& j) {
+  try {
+    profile_from_json(j, "machine test.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+nlohmann::json minimal() {
+  return nlohmann::json::parse(R"({
+    "name": "t", "description": "d",
+    "kinematics": {"type": "cartesian", "min_mm": [0,0,0], "max_mm": [100,100,100]},
+    "firmware": {"flavour": "marlin", "arcs": true},
+    "deposition": {"model": "none"}})");
+}
+
+TEST(Profiles, MinimalProfileLoads) { EXPECT_EQ(error_of(minimal()), ""); }
+
+TEST(Profiles, UnknownKeyIsNamedWithItsPath) {
+  auto j = minimal();
+  j["deposition"]["presure_bar"] = 1;
+  EXPECT_NE(error_of(j).find("deposition.presure_bar: unknown key"), std::string::npos);
+}
+
+TEST(Profiles, WrongTypeAndRangeAreNamed) {
+  auto j = minimal();
+  j["firmware"]["arcs"] = "yes";
+  j["travel_lift_mm"] = -3;
+  const std::string e = error_of(j);
+  EXPECT_NE(e.find("firmware.arcs = \"yes\": must be true or false"), std::string::npos) << e;
+  EXPECT_NE(e.find("travel_lift_mm = -3: must be in [0, 100]"), std::string::npos) << e;
+}
+
+TEST(Profiles, UnknownMachineListsKnownOnes) {
+  try {
+    load_profile("prusa-mk4");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("deltawasp-2040-clay"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace strand::machines

@@ -1,0 +1,178 @@
+// Scaffold properties checked on the emitted G-code parsed back, not on internal state.
+#include "patterns/scaffold.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "machines/profile.h"
+#include "postprocess/crossings.h"
+#include "postprocess/estimate.h"
+#include "postprocess/gcode_parser.h"
+#include "postprocess/produce.h"
+#include "slicer/input_error.h"
+#include "slicer/units.h"
+#include "tests/support/gcode_view.h"
+
+namespace strand::patterns {
+namespace {
+
+struct Emitted {
+  slicer::Toolpath toolpath;
+  post::ParsedGcode parsed;
+  std::string gcode;
+};
+
+Emitted emit(const nlohmann::json& given, const std::string& machine = "deltawasp-2040-clay") {
+  const auto values = slicer::resolve_params(scaffold_table(), given);
+  Emitted e;
+  e.toolpath = scaffold_from_values(values);
+  const auto m = machines::load_profile(machine);
+  e.gcode = post::produce(e.toolpath, m, post::plan_options_from(e.toolpath, 0.01), "x.gcode").gcode;
+  e.parsed = post::parse_gcode(e.gcode);
+  return e;
+}
+
+const nlohmann::json kThesis = {{"nozzle", 0.84}, {"gap", 1.6}, {"size", "36x36"}, {"height", 13}};
+
+TEST(Scaffold, OneStrandPerLayer) {
+  const auto e = emit(kThesis);
+  const auto est = post::estimate(e.parsed.program);
+  ASSERT_FALSE(est.layers.empty());
+  for (const auto& l : est.layers) EXPECT_EQ(l.strands, 1) << "layer " << l.layer;
+}
+
+TEST(Scaffold, NoSelfCrossingInsideALayer) {
+  for (const char* angles : {"0,90", "0,60,120", "45,135", "30"}) {
+    SCOPED_TRACE(angles);
+    auto given = kThesis;
+    given["angles"] = angles;
+    const auto e = emit(given);
+    const auto c = post::find_contacts(e.parsed.program, 0.01, 1e-3);
+    EXPECT_TRUE(c.crossings.empty()) << c.crossings.size() << " crossings, first at "
+                                     << (c.crossings.empty() ? slicer::Vec2(0, 0) : c.crossings[0].at_mm).transpose();
+  }
+}
+
+// Direction of each long infill move, as an angle in [0, 180).
+std::set<long> long_move_angles(const Emitted& e, int layer, double min_len) {
+  std::set<long> out;
+  for (const auto& s : testing::deposit_segments(e.parsed.program)) {
+    if (s.layer != layer || s.feature != slicer::Feature::Infill) continue;
+    const slicer::Vec3 d = s.b - s.a;
+    if (d.head<2>().norm() < min_len) continue;
+    double a = slicer::rad_to_deg(std::atan2(d.y(), d.x()));
+    a = std::fmod(a + 360.0, 180.0);
+    out.insert(std::lround(a) % 180);
+  }
+  return out;
+}
+
+TEST(Scaffold, DirectionsFollowAngles) {
+  auto given = kThesis;
+  given["angles"] = "0,60,120";
+  const auto e = emit(given);
+  EXPECT_EQ(long_move_angles(e, 0, 20), std::set<long>{0});
+  EXPECT_EQ(long_move_angles(e, 1, 20), std::set<long>{60});
+  EXPECT_EQ(long_move_angles(e, 2, 20), std::set<long>{120});
+  EXPECT_EQ(long_move_angles(e, 3, 20), std::set<long>{0});
+}
+
+TEST(Scaffold, FootprintMatchesReportWithinTolerance) {
+  const auto e = emit(kThesis);
+  const double d = 0.84;
+  double xmin = 1e9, xmax = -1e9, ymin = 1e9, ymax = -1e9;
+  // Filament centre lines: long moves along y (layer 1) give x, along x (layer 0) give y.
+  for (const auto& s : testing::deposit_segments(e.parsed.program)) {
+    const slicer::Vec3 dv = s.b - s.a;
+    if (s.feature != slicer::Feature::Infill || dv.head<2>().norm() < 20) continue;
+    if (std::abs(dv.x()) < 1e-9) xmin = std::min(xmin, s.a.x()), xmax = std::max(xmax, s.a.x());
+    if (std::abs(dv.y()) < 1e-9) ymin = std::min(ymin, s.a.y()), ymax = std::max(ymax, s.a.y());
+  }
+  const auto& fp = e.toolpath.derived.at("footprint_mm");
+  EXPECT_NEAR(xmax - xmin + d, fp[0].get<double>(), 0.01);
+  EXPECT_NEAR(ymax - ymin + d, fp[1].get<double>(), 0.01);
+  EXPECT_NEAR((xmax + xmin) / 2, 0.0, 0.01) << "centred on the delta's axis";
+  EXPECT_NEAR(fp[0].get<double>(), 35.0, 1e-9) << "36 mm rounds to 15 filaments at 2.44 mm pitch";
+}
+
+TEST(Scaffold, UTurnsLieOutsideTheFootprint) {
+  const auto e = emit(kThesis);
+  const double half = e.toolpath.derived.at("footprint_mm")[0].get<double>() / 2;
+  for (const auto& s : testing::deposit_segments(e.parsed.program)) {
+    const slicer::Vec3 dv = s.b - s.a;
+    if (s.feature != slicer::Feature::Infill || dv.head<2>().norm() > 20) continue;
+    // short infill moves are the U-turn connectors: both ends outside the footprint
+    EXPECT_GT(std::max(std::abs(s.a.x()), std::abs(s.a.y())), half);
+    EXPECT_GT(std::max(std::abs(s.b.x()), std::abs(s.b.y())), half);
+  }
+}
+
+TEST(Scaffold, LayerCountFromHeightOrLayers) {
+  auto by_layers = kThesis;
+  by_layers.erase("height");
+  by_layers["layers"] = 7;
+  EXPECT_EQ(emit(by_layers).parsed.program.layers.size(), 7u);
+  // 13 mm / (0.88 * 0.84 mm) = 17.6 -> 18 layers
+  EXPECT_EQ(emit(kThesis).parsed.program.layers.size(), 18u);
+}
+
+TEST(Scaffold, EveryMoveInsideTheDeltaCylinder) {
+  auto big = kThesis;
+  big["size"] = "130x130";
+  const auto e = emit(big);
+  for (const auto& mv : e.parsed.program.moves) {
+    if (mv.kind == slicer::MoveKind::Raw || mv.kind == slicer::MoveKind::Dwell) continue;
+    EXPECT_LE(std::hypot(mv.end_mm.x(), mv.end_mm.y()), 100.0);
+    EXPECT_GE(mv.end_mm.z(), 0.0);
+  }
+}
+
+TEST(Scaffold, TooLargeForTheDeltaIsAnErrorNamingTheRadius) {
+  auto huge = kThesis;
+  huge["size"] = "150x150";
+  try {
+    emit(huge);
+    FAIL() << "expected InputError";
+  } catch (const InputError& ex) {
+    EXPECT_NE(std::string(ex.what()).find("radius"), std::string::npos) << ex.what();
+  }
+}
+
+TEST(Scaffold, CartesianMachineCentresOnItsBedAndUsesVolumetricE) {
+  const auto e = emit(kThesis, "marlin-xyz-200");
+  double e_total = 0;
+  for (const auto& mv : e.parsed.program.moves) e_total += mv.kind == slicer::MoveKind::Deposit ? 1 : 0;
+  EXPECT_GT(e_total, 0);
+  EXPECT_TRUE(e.parsed.has_e);
+  const auto box = slicer::bounds(e.toolpath);
+  EXPECT_LT(box.first.x(), 0) << "the toolpath itself stays part-centred";
+  for (const auto& mv : e.parsed.program.moves) {
+    if (mv.kind == slicer::MoveKind::Deposit) {
+      EXPECT_GT(mv.end_mm.x(), 50);
+    }
+  }
+}
+
+TEST(Scaffold, PorosityMatchesLogPileFormula) {
+  // For 0/90 with N filaments over depth D: P = 1 - N * A / (D * h).
+  const auto e = emit(kThesis);
+  const double d = 0.84, h = 0.88 * d, D = 35.0, N = 15;
+  const double A = slicer::bead_area_mm2(d, h);
+  EXPECT_NEAR(e.toolpath.derived.at("porosity").get<double>(), 1 - N * A / (D * h), 1e-9);
+}
+
+TEST(ScaffoldParams, LayerHeightOutsideHalfToOneNozzleIsRejected) {
+  auto bad = kThesis;
+  bad["layer-height"] = 0.3;
+  try {
+    scaffold_params_from(slicer::resolve_params(scaffold_table(), bad));
+    FAIL();
+  } catch (const InputError& ex) {
+    EXPECT_NE(std::string(ex.what()).find("[0.42, 0.84]"), std::string::npos) << ex.what();
+  }
+}
+
+}  // namespace
+}  // namespace strand::patterns

@@ -1,0 +1,39 @@
+#include "slicer/geometry.h"
+
+#include <gtest/gtest.h>
+
+#include "slicer/units.h"
+
+namespace strand::slicer {
+namespace {
+
+TEST(SegmentContact, ProperCrossingIsCrossing) {
+  EXPECT_EQ(segment_contact({0, 0}, {2, 2}, {0, 2}, {2, 0}, 1e-6), Contact::Crossing);
+  const Vec2 p = crossing_point({0, 0}, {2, 2}, {0, 2}, {2, 0});
+  EXPECT_NEAR(p.x(), 1.0, 1e-12);
+  EXPECT_NEAR(p.y(), 1.0, 1e-12);
+}
+
+TEST(SegmentContact, EndOnSegmentIsTouchNotCrossing) {
+  EXPECT_EQ(segment_contact({0, 0}, {2, 0}, {1, 0}, {1, 1}, 1e-6), Contact::Touch);
+}
+
+TEST(SegmentContact, ParallelApartIsNone) {
+  EXPECT_EQ(segment_contact({0, 0}, {2, 0}, {0, 0.5}, {2, 0.5}, 1e-3), Contact::None);
+}
+
+TEST(SegmentContact, CollinearOverlapIsTouch) {
+  EXPECT_EQ(segment_contact({0, 0}, {2, 0}, {1, 0}, {3, 0}, 1e-6), Contact::Touch);
+}
+
+TEST(ArcSweep, CcwQuarterIsPositiveAndCwIsNegative) {
+  EXPECT_NEAR(arc_sweep({0, 0}, {1, 0}, {0, 1}, true), kPi / 2, 1e-12);
+  EXPECT_NEAR(arc_sweep({0, 0}, {1, 0}, {0, 1}, false), -3 * kPi / 2, 1e-12);
+}
+
+TEST(ArcSweep, SameStartAndEndIsFullCircle) {
+  EXPECT_NEAR(arc_sweep({0, 0}, {1, 0}, {1, 0}, true), 2 * kPi, 1e-12);
+}
+
+}  // namespace
+}  // namespace strand::slicer

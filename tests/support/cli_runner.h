@@ -1,0 +1,21 @@
+// Runs the built `strand` binary for end-to-end tests: exit code, stdout and stderr.
+#pragma once
+
+#include <string>
+
+namespace strand::testing {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+// `args` is appended to the binary path and run through the shell in `dir`.
+CliResult run_strand(const std::string& args, const std::string& dir = ".");
+// A fresh empty directory under the system temp dir, unique per call.
+std::string fresh_dir(const std::string& tag);
+std::string slurp(const std::string& path);
+bool exists(const std::string& path);
+
+}  // namespace strand::testing
