@@ -30,6 +30,9 @@ struct BadCase {
   const char* must_mention;
 };
 
+// Names the case in test listings instead of dumping its bytes.
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
 class ScaffoldBadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(ScaffoldBadInput, ExitTwoOneLineNoFile) {

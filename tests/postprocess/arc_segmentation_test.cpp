@@ -29,6 +29,9 @@ struct ArcCase {
   bool ccw;
 };
 
+// Names the case in test listings instead of dumping its bytes.
+void PrintTo(const ArcCase& c, std::ostream* os) { *os << c.name; }
+
 class ChordBound : public ::testing::TestWithParam<ArcCase> {};
 
 TEST_P(ChordBound, EveryChordWithinTolerance) {
