@@ -139,6 +139,7 @@ MachineProfile profile_from_json(const nlohmann::json& j, const std::string& ori
   p.start_gcode = lines(j, "start_gcode");
   p.end_gcode = lines(j, "end_gcode");
   p.source = j;
+  p.plotter = read_plotter(j, origin, problems);  // plotting (issue 5)
   if (!problems.empty()) throw InputError(problems);
   return p;
 }

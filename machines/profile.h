@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "machines/plotter_profile.h"
 #include "slicer/geometry.h"
 
 namespace strand::machines {
@@ -70,6 +71,8 @@ struct MachineProfile {
   std::vector<std::string> start_gcode;  // templates; {lead_s}, {lead_ms}, {message}
   std::vector<std::string> end_gcode;
   nlohmann::json source;             // the profile as loaded, for reports
+  // --- plotting (issue 5) ---
+  Plotter plotter;                   // pen and plotter kinematics; enabled for plotters
 };
 
 // Loads a shipped profile by name, or a user profile from a path ending in .json.

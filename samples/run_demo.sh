@@ -11,4 +11,5 @@ for job in "$samples"/*.json; do
   name="$(basename "$job" .json)"
   "$strand" job "$job" -o "$name.gcode" --report "$name.json" | tee "$name-summary.txt"
 done
+"$strand" plot "$samples/plot/shapes.svg" --machine xy-plotter-servo --fit 380x260 -o plot-shapes.gcode --report plot-shapes.json | tee plot-shapes-summary.txt
 echo "demo output in $(pwd)"

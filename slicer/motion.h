@@ -31,6 +31,7 @@ struct Move {
   int layer = -1;                // index into MotionProgram::layers, -1 = before the first
   double dwell_s = 0.0;          // Dwell only
   std::string text;              // Raw only: one or more lines without trailing newline
+  int tool = 0;                  // extruder or pen index (plotting: which pen draws)
 
   bool operator==(const Move&) const = default;
 };

@@ -1,0 +1,42 @@
+// From an imported SVG drawing to a plotting Toolpath: pen assignment, placement on the
+// machine's paper (fit, scale, offset, mirror), flattening within the tolerance budget,
+// hatch fills, and the check that every point can be drawn.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "machines/profile.h"
+#include "slicer/svg_import.h"
+#include "slicer/toolpath.h"
+
+namespace strand::post {
+
+struct PlotOptions {
+  std::optional<slicer::Vec2> fit_mm;        // fit into W x H keeping aspect
+  double scale = 1.0;                        // times the SVG's physical size (without fit)
+  slicer::Vec2 offset_mm = slicer::Vec2::Zero();  // added after centring
+  bool mirror = false;                       // mirror left-right (drawing on glass)
+  double tolerance_mm = 0.05;                // end-to-end bound: flattening + bow + rounding
+  std::string pens;                          // "key=pen,..." (group id, layer label, colour)
+  bool order = true;
+  double hatch_angle_deg = 45.0;
+};
+
+// Share of the tolerance spent on curve flattening; the rest goes to the kinematic bow of
+// straight segments and to number rounding.
+inline constexpr double kFlattenShare = 0.5;
+
+// Which 1-based pen each shape uses: --pens rules first (group ids nearest first, then layer
+// labels, then stroke or fill colour), else a group id m1..m9 as in Scribit, else pen 1.
+// Throws InputError for a malformed rule or a pen the machine lacks.
+std::vector<int> assign_pens(const slicer::SvgDrawing& d, const std::string& rules,
+                             int machine_pens);
+
+// The placed, flattened drawing as one layer of reversible Feature::Pen strokes (tool =
+// 0-based pen). Throws InputError if nothing is drawable or a point cannot be reached.
+slicer::Toolpath layout_plot(const slicer::SvgDrawing& d, const machines::MachineProfile& m,
+                             const PlotOptions& o);
+
+}  // namespace strand::post

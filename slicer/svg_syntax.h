@@ -1,0 +1,36 @@
+// The micro-grammars inside SVG attributes: path data, transform lists, number lists and
+// lengths with units. Recursive-descent parsers that follow the SVG 1.1 BNF; each throws
+// InputError naming the attribute and the offending text.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "slicer/curves.h"
+
+namespace strand::slicer {
+
+// Path data ("M 10 10 l 5 0 a 5 5 0 0 1 5 5 z") into sub-paths in user units. Handles every
+// command (M L H V C S Q T A Z), absolute and relative, implicit repeats, compact numbers
+// ("1.5.5", "-1-2", "1e-3") and packed arc flags ("a1 1 0 00 10 10"). Quadratics become
+// exact cubics; arcs keep their centre form. A syntax error keeps the pieces read so far
+// (SVG's error rule) and is reported through `error` when non-null.
+std::vector<SubPath> parse_path_data(std::string_view d, std::string* error = nullptr);
+
+// transform="matrix(...) translate(...) scale(...) rotate(a cx cy) skewX(...) skewY(...)".
+Affine parse_transform(std::string_view text);
+
+// "10,20 30 40" -> {10, 20, 30, 40}.
+std::vector<double> parse_number_list(std::string_view text);
+
+// A length in user units (px); mm, cm, in, pt, pc, px and none are accepted at 96 px/in.
+// Percentages and other units throw InputError naming `what`.
+double parse_length_px(std::string_view text, const std::string& what);
+
+// Elliptical arc from `from` to `to` (SVG endpoint form) as a centre-form piece; radii that
+// are too small are scaled up as the SVG spec prescribes. Zero radii give a line.
+CurvePiece arc_piece(const Vec2& from, double rx, double ry, double x_axis_rotation_deg,
+                     bool large_arc, bool sweep, const Vec2& to);
+
+}  // namespace strand::slicer

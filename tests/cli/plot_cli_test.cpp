@@ -1,0 +1,228 @@
+// `strand plot` from the outside: every sample on every plotter, the end-to-end error bound
+// checked through the forward kinematics, ordering gains, determinism, the drum rule, erase
+// sweeps, and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+
+#include "machines/pen_emitter.h"
+#include "machines/plotter_kinematics.h"
+#include "machines/profile.h"
+#include "postprocess/gcode_parser.h"
+#include "slicer/file_io.h"
+#include "tests/support/cli_runner.h"
+
+namespace strand::testing {
+namespace {
+
+const std::string kSamples = std::string(STRAND_SOURCE_DIR) + "/samples/plot/";
+const char* kPlotters[] = {"xy-plotter-servo", "xy-plotter-z", "xy-plotter-grbl", "polargraph",
+                           "polar-rtheta", "wall-drum-4pen"};
+
+struct SampleCase {
+  const char* svg;
+  const char* machine;
+};
+
+class EverySample : public ::testing::TestWithParam<SampleCase> {};
+
+TEST_P(EverySample, PlotsAndParsesBackAsPenMoves) {
+  const auto dir = fresh_dir("plot");
+  const auto r = run_strand("plot '" + kSamples + GetParam().svg + "' --machine " + GetParam().machine +
+                            " --fit 180x120 -o out.gcode --report out.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto parsed = post::parse_gcode(slurp(dir + "/out.gcode"));
+  EXPECT_FALSE(parsed.has_e);
+  int draws = 0;
+  for (const auto& mv : parsed.program.moves) draws += mv.kind == slicer::MoveKind::Deposit;
+  EXPECT_GT(draws, 10);
+  const auto report = nlohmann::json::parse(slurp(dir + "/out.json"));
+  EXPECT_LE(report["pen_up_after_ordering"]["pen_up_mm"].get<double>(),
+            report["pen_up_before_ordering"]["pen_up_mm"].get<double>() + 1e-9);
+}
+
+std::vector<SampleCase> all_cases() {
+  std::vector<SampleCase> out;
+  for (const char* svg : {"shapes.svg", "layers.svg", "lines.svg"}) {
+    for (const char* m : kPlotters) out.push_back({svg, m});
+  }
+  return out;
+}
+
+INSTANTIATE_TEST_SUITE_P(Plotters, EverySample, ::testing::ValuesIn(all_cases()),
+                         [](const auto& info) {
+                           std::string n = std::string(info.param.svg) + "_" + info.param.machine;
+                           for (char& c : n) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                           return n;
+                         });
+
+// A 100 mm square with a circle of radius 40 inside, centred: the square makes centring exact.
+const char* kCircleInSquare =
+    "<svg xmlns='http://www.w3.org/2000/svg' width='100mm' height='100mm' viewBox='0 0 100 100' "
+    "fill='none' stroke='black'><rect width='100' height='100'/><circle cx='50' cy='50' r='40'/></svg>";
+
+struct BoundCase {
+  const char* machine;
+  double scale;
+  double tolerance;
+};
+
+class EndToEnd : public ::testing::TestWithParam<BoundCase> {};
+
+TEST_P(EndToEnd, EmittedMovesStayWithinToleranceOfTheTrueShapes) {
+  const auto dir = fresh_dir("bound");
+  slicer::write_file_atomic(dir + "/c.svg", kCircleInSquare);
+  const auto& p = GetParam();
+  const auto r = run_strand("plot c.svg --machine " + std::string(p.machine) + " --scale " + std::to_string(p.scale) +
+                            " --tolerance " + std::to_string(p.tolerance) + " -o c.gcode --report c.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto m = machines::load_profile(p.machine);
+  const auto report = nlohmann::json::parse(slurp(dir + "/c.json"));
+  const auto& area = report["drawable_area_mm"];
+  const slicer::Vec2 c((area[0][0].get<double>() + area[1][0].get<double>()) / 2,
+                       (area[0][1].get<double>() + area[1][1].get<double>()) / 2);
+  const double radius = 40 * p.scale, half = 50 * p.scale;
+  const auto shape_distance = [&](const slicer::Vec2& q) {
+    const slicer::Vec2 d = (q - c).cwiseAbs();
+    const double to_square = std::max(d.x(), d.y()) <= half
+                                 ? half - std::max(d.x(), d.y())
+                                 : (d - slicer::Vec2(half, half)).cwiseMax(0.0).norm();
+    return std::min(std::abs((q - c).norm() - radius), to_square);
+  };
+  const auto parsed = post::parse_gcode(slurp(dir + "/c.gcode"));
+  slicer::Vec2 from = parsed.program.start_mm.head<2>();
+  double worst = 0.0;
+  int samples = 0;
+  for (const auto& mv : parsed.program.moves) {
+    const slicer::Vec2 to = mv.end_mm.head<2>();
+    if (mv.kind == slicer::MoveKind::Deposit) {
+      for (int k = 0; k <= 16; ++k, ++samples) {
+        worst = std::max(worst, shape_distance(machines::to_paper(m.plotter.setup, from + (to - from) * (k / 16.0))));
+      }
+    }
+    if (mv.kind == slicer::MoveKind::Travel || mv.kind == slicer::MoveKind::Deposit) from = to;
+  }
+  EXPECT_GT(samples, 1000);
+  EXPECT_LE(worst, p.tolerance);
+}
+
+INSTANTIATE_TEST_SUITE_P(Plotters, EndToEnd,
+                         ::testing::Values(BoundCase{"xy-plotter-servo", 2.5, 0.05},
+                                           BoundCase{"polargraph", 3.0, 0.05},
+                                           BoundCase{"polargraph", 3.0, 0.1},
+                                           BoundCase{"polar-rtheta", 2.0, 0.05},
+                                           BoundCase{"wall-drum-4pen", 5.0, 0.05}));
+
+TEST(PlotCli, SameInputGivesIdenticalBytes) {
+  const auto dir = fresh_dir("det");
+  const std::string args = "plot '" + kSamples + "shapes.svg' --machine wall-drum-4pen --fit 600x400 ";
+  ASSERT_EQ(run_strand(args + "-o a.gcode --report a.json", dir).exit_code, 0);
+  ASSERT_EQ(run_strand(args + "-o b.gcode --report b.json", dir).exit_code, 0);
+  EXPECT_EQ(slurp(dir + "/a.gcode"), slurp(dir + "/b.gcode"));
+}
+
+TEST(PlotCli, OrderingCutsPenUpTravelOnScrambledLines) {
+  const auto dir = fresh_dir("order");
+  const std::string args = "plot '" + kSamples + "lines.svg' --machine xy-plotter-servo ";
+  ASSERT_EQ(run_strand(args + "-o a.gcode --report a.json", dir).exit_code, 0);
+  ASSERT_EQ(run_strand(args + "--no-order -o b.gcode --report b.json", dir).exit_code, 0);
+  const auto a = nlohmann::json::parse(slurp(dir + "/a.json"));
+  const auto b = nlohmann::json::parse(slurp(dir + "/b.json"));
+  EXPECT_LT(a["estimate"]["pen_up_mm"].get<double>(), 0.3 * b["estimate"]["pen_up_mm"].get<double>());
+  EXPECT_NEAR(a["estimate"]["draw_mm"].get<double>(), b["estimate"]["draw_mm"].get<double>(), 1e-6);
+}
+
+// The drum may turn back only to engage (engage -> rest) or to write (rest -> write).
+TEST(PlotCli, DrumNeverTurnsBackWithAMarkerEngaged) {
+  const auto dir = fresh_dir("drum");
+  // pens used out of order in the document: 3, 1, 4, 2
+  slicer::write_file_atomic(dir + "/d.svg",
+      "<svg xmlns='http://www.w3.org/2000/svg' width='300mm' height='100mm' viewBox='0 0 300 100' stroke='black' fill='none'>"
+      "<g id='m3'><line x1='0' y1='0' x2='50' y2='50'/></g><g id='m1'><line x1='60' y1='0' x2='110' y2='50'/></g>"
+      "<g id='m4'><line x1='120' y1='0' x2='170' y2='50'/></g><g id='m2'><line x1='180' y1='0' x2='230' y2='50'/></g></svg>");
+  ASSERT_EQ(run_strand("plot d.svg --machine wall-drum-4pen --no-order -o d.gcode", dir).exit_code, 0);
+  const auto m = machines::load_profile("wall-drum-4pen");
+  const auto& pen = m.plotter.pen;
+  std::istringstream in(slurp(dir + "/d.gcode"));
+  std::string line, prev_line;
+  double z = 0.0;
+  int backwards = 0, resets = 0;
+  const std::regex zword(R"(^G1 Z(-?[0-9.]+))");
+  std::smatch mz;
+  while (std::getline(in, line)) {
+    if (line.rfind("G92 Z0", 0) == 0) {
+      z = 0.0;
+      ++resets;
+    }
+    if (std::regex_search(line, mz, zword)) {
+      const double nz = std::stod(mz[1]);
+      EXPECT_EQ(std::getline(in, prev_line) ? prev_line : "", "M400") << "after " << line;
+      if (nz < z - 1e-9) {
+        bool allowed = false;
+        for (int k = 1; k <= pen.count; ++k) {
+          allowed = allowed || (std::abs(z - machines::drum_engage_deg(pen, k)) < 1e-6 && std::abs(nz - machines::drum_rest_deg(pen, k)) < 1e-6) ||
+                    (std::abs(z - machines::drum_rest_deg(pen, k)) < 1e-6 && std::abs(nz - machines::drum_write_deg(pen, k)) < 1e-6);
+        }
+        EXPECT_TRUE(allowed) << "drum turns back from " << z << " to " << nz;
+        ++backwards;
+      }
+      z = nz;
+    }
+  }
+  EXPECT_EQ(resets, 1 + 2);  // the start, then full turns for 3 -> 1 and 4 -> 2
+  EXPECT_GE(backwards, 8);   // 4 engagements and 4 pen drops
+}
+
+TEST(PlotCli, EraseSweepsCoverTheDrawingWithDwells) {
+  const auto dir = fresh_dir("erase");
+  const auto r = run_strand("plot '" + kSamples + "layers.svg' --machine wall-drum-4pen --fit 300x200 -o w.gcode --erase w_erase.gcode", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string e = slurp(dir + "/w_erase.gcode");
+  EXPECT_NE(e.find("M109 S180"), std::string::npos);
+  EXPECT_NE(e.find("G4 P3000"), std::string::npos);
+  // 200 mm tall at a 20 mm disc: 10 rows, each heated once
+  std::size_t rows = 0;
+  for (std::size_t at = e.find("M109"); at != std::string::npos; at = e.find("M109", at + 1)) ++rows;
+  EXPECT_EQ(rows, 10u);
+}
+
+struct BadCase {
+  const char* name;
+  const char* svg;
+  const char* args;
+  const char* must_mention;
+};
+
+class PlotBadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(PlotBadInput, ExitTwoOneLineNoFile) {
+  const auto dir = fresh_dir("bad");
+  slicer::write_file_atomic(dir + "/in.svg", GetParam().svg);
+  const auto r = run_strand(std::string("plot in.svg -o out.gcode --report out.json ") + GetParam().args, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(GetParam().must_mention), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(exists(dir + "/out.gcode"));
+  EXPECT_FALSE(exists(dir + "/out.json"));
+}
+
+const char* kLine = "<svg xmlns='http://www.w3.org/2000/svg' width='100mm' height='100mm' viewBox='0 0 100 100'><g id='m3'><line x2='100' y2='100' stroke='black'/></g></svg>";
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, PlotBadInput,
+    ::testing::Values(
+        BadCase{"malformed_xml", "<svg><g></svg>", "", "malformed XML"},
+        BadCase{"nothing_drawable", "<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'><text>x</text></svg>", "", "nothing drawable"},
+        BadCase{"unknown_units", "<svg xmlns='http://www.w3.org/2000/svg' width='10furlong' height='10'/>", "", "unknown unit"},
+        BadCase{"does_not_fit", kLine, "--scale 10", "does not fit"},
+        BadCase{"outside_polargraph_area", kLine, "--machine polargraph --scale 2 --offset 0,-450", "tension"},
+        BadCase{"pen_machine_lacks", kLine, "--pens m3=7", "pen 7"},
+        BadCase{"not_a_plotter", kLine, "--machine marlin-xyz-200", "not a plotter"},
+        BadCase{"bad_tolerance", kLine, "--tolerance 0.0001", "tolerance"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace strand::testing

@@ -1,0 +1,115 @@
+// SVG import against analytic shapes: circles, transformed rects, relative vs absolute
+// paths, units, viewBox, use, hidden and skipped elements, and malformed input.
+#include "slicer/svg_import.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "slicer/input_error.h"
+#include "slicer/svg_syntax.h"
+
+namespace strand::slicer {
+namespace {
+
+std::string doc(const std::string& body, const std::string& root = "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 100 100\"") {
+  return "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" " + root +
+         " fill=\"none\" stroke=\"black\">" + body + "</svg>";
+}
+
+Polyline only_polyline(const SvgDrawing& d, double tol = 0.01) {
+  EXPECT_EQ(d.shapes.size(), 1u);
+  EXPECT_EQ(d.shapes.at(0).paths.size(), 1u);
+  return flatten(d.shapes.at(0).paths.at(0), tol);
+}
+
+TEST(SvgImport, CircleRadiusWithinTolerance) {
+  const auto pl = only_polyline(import_svg(doc("<circle cx=\"50\" cy=\"40\" r=\"20\"/>"), "t"), 0.01);
+  for (const auto& p : pl) EXPECT_NEAR((p - Vec2(50, 40)).norm(), 20.0, 0.01);
+  EXPECT_LT((pl.front() - pl.back()).norm(), 1e-9);
+}
+
+TEST(SvgImport, NestedTransformsBakeIntoRectCorners) {
+  const auto pl = only_polyline(import_svg(
+      doc("<g transform=\"translate(10 20)\"><g transform=\"rotate(90 5 5)\">"
+          "<rect x=\"0\" y=\"0\" width=\"10\" height=\"4\" transform=\"scale(2 1)\"/></g></g>"), "t"));
+  // rect (0,0)-(20,4) after scale; rotate 90 about (5,5): (x,y) -> (10 - y, x); then +(10,20)
+  const std::vector<Vec2> want = {{20, 20}, {20, 40}, {16, 40}, {16, 20}, {20, 20}};
+  ASSERT_EQ(pl.size(), want.size());
+  for (std::size_t i = 0; i < want.size(); ++i) EXPECT_LT((pl[i] - want[i]).norm(), 1e-9) << i;
+}
+
+TEST(SvgImport, SkewAndMatrixMatchTheirDefinitions) {
+  const auto a = only_polyline(import_svg(doc("<line x1=\"0\" y1=\"10\" x2=\"0\" y2=\"20\" transform=\"skewX(45)\"/>"), "t"));
+  EXPECT_LT((a[1] - Vec2(20, 20)).norm(), 1e-9);
+  const auto b = only_polyline(import_svg(doc("<line x1=\"1\" y1=\"2\" x2=\"3\" y2=\"4\" transform=\"matrix(1 2 3 4 5 6)\"/>"), "t"));
+  EXPECT_LT((b[0] - Vec2(1 + 6 + 5, 2 + 8 + 6)).norm(), 1e-9);
+}
+
+TEST(SvgImport, RelativeAndAbsolutePathsGiveTheSameGeometry) {
+  const std::string abs = "M10 10 L20 10 H30 V20 C30 30 40 30 40 20 S50 10 50 20 Q55 30 60 20 T70 20 A5 8 30 0 1 80 25 Z";
+  const std::string rel = "m10 10 l10 0 h10 v10 c0 10 10 10 10 0 s10 -10 10 0 q5 10 10 0 t10 0 a5 8 30 0 1 10 5 z";
+  const auto a = only_polyline(import_svg(doc("<path d=\"" + abs + "\"/>"), "t"));
+  const auto r = only_polyline(import_svg(doc("<path d=\"" + rel + "\"/>"), "t"));
+  ASSERT_EQ(a.size(), r.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_LT((a[i] - r[i]).norm(), 1e-9) << i;
+}
+
+TEST(SvgImport, ImplicitRepeatsCompactNumbersAndPackedArcFlags) {
+  const auto subs = parse_path_data("M0 0 10 0 10-10-.5.5 m5 5 1e1 0a5 5 0 1010 0");
+  ASSERT_EQ(subs.size(), 2u);
+  EXPECT_EQ(subs[0].pieces.size(), 3u);  // implicit L after M
+  EXPECT_LT((subs[0].pieces[2].end() - Vec2(-0.5, 0.5)).norm(), 1e-12);
+  ASSERT_EQ(subs[1].pieces.size(), 2u);  // implicit l after m, then the arc
+  EXPECT_EQ(subs[1].pieces[1].kind, CurveKind::Arc);
+  EXPECT_LT((subs[1].pieces[1].end() - Vec2(14.5, 5.5) - Vec2(10, 0)).norm(), 1e-9);
+}
+
+TEST(SvgImport, ArcRadiiTooSmallAreScaledUp) {
+  const CurvePiece a = arc_piece(Vec2(0, 0), 1, 1, 0, false, true, Vec2(10, 0));
+  EXPECT_LT((a.end() - Vec2(10, 0)).norm(), 1e-9);
+  EXPECT_NEAR(std::abs(a.sweep_rad), 3.14159265358979, 1e-9);
+}
+
+TEST(SvgImport, UnitsAndViewBoxScaleToMillimetres) {
+  const auto in = import_svg(doc("<line x1=\"0\" y1=\"0\" x2=\"96\" y2=\"0\"/>", "width=\"2in\" height=\"1in\""), "t");
+  EXPECT_NEAR(flatten(in.shapes[0].paths[0], 0.01)[1].x(), 25.4, 1e-9);
+  EXPECT_NEAR(in.page_mm.x(), 50.8, 1e-9);
+  const auto pt = import_svg(doc("<line x1=\"0\" y1=\"0\" x2=\"72pt\" y2=\"0\"/>", "width=\"100\" height=\"100\""), "t");
+  EXPECT_NEAR(flatten(pt.shapes[0].paths[0], 0.01)[1].x(), 25.4, 1e-9);
+  // meet: a 200x100 viewBox in a 100x100 mm page scales by 0.5 and centres vertically
+  const auto vb = import_svg(doc("<line x1=\"0\" y1=\"0\" x2=\"200\" y2=\"0\"/>", "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 200 100\""), "t");
+  const auto pl = flatten(vb.shapes[0].paths[0], 0.01);
+  EXPECT_LT((pl[0] - Vec2(0, 25)).norm(), 1e-9);
+  EXPECT_LT((pl[1] - Vec2(100, 25)).norm(), 1e-9);
+  const auto none = import_svg(doc("<line x1=\"0\" y1=\"100\" x2=\"200\" y2=\"100\"/>", "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 200 100\" preserveAspectRatio=\"none\""), "t");
+  EXPECT_LT((flatten(none.shapes[0].paths[0], 0.01)[0] - Vec2(0, 100)).norm(), 1e-9);
+}
+
+TEST(SvgImport, UseReferencesHiddenElementsAndText) {
+  const auto d = import_svg(doc("<defs><rect id=\"r\" width=\"5\" height=\"5\"/></defs>"
+                                "<use xlink:href=\"#r\" x=\"10\" y=\"20\"/>"
+                                "<circle r=\"3\" style=\"display: none\"/><g display=\"none\"><line x2=\"5\"/></g>"
+                                "<line x2=\"5\" visibility=\"hidden\"/><text>hi</text>"), "t");
+  ASSERT_EQ(d.shapes.size(), 1u);
+  EXPECT_LT((flatten(d.shapes[0].paths[0], 0.01)[0] - Vec2(10, 20)).norm(), 1e-9);
+  ASSERT_EQ(d.skipped.size(), 1u);
+  EXPECT_EQ(d.skipped[0], "text (1)");
+}
+
+TEST(SvgImport, GroupIdsAreCollectedFromEveryAncestor) {
+  const auto d = import_svg(doc("<g id=\"m3\"><g id=\"inner\"><line x2=\"5\" stroke=\"#F00\"/></g></g>"), "t");
+  ASSERT_EQ(d.shapes.size(), 1u);
+  EXPECT_EQ(d.shapes[0].group_ids, (std::vector<std::string>{"inner", "m3"}));
+  EXPECT_EQ(d.shapes[0].stroke_color, "#ff0000");
+}
+
+TEST(SvgImport, BadInputThrowsInputError) {
+  EXPECT_THROW(import_svg("<svg><g></svg>", "t"), InputError);
+  EXPECT_THROW(import_svg(doc("<line x2=\"5furlong\"/>"), "t"), InputError);
+  EXPECT_THROW(import_svg(doc("<use href=\"#nope\"/>"), "t"), InputError);
+  EXPECT_THROW(import_svg("<html/>", "t"), InputError);
+}
+
+}  // namespace
+}  // namespace strand::slicer
