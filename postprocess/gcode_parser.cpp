@@ -29,34 +29,49 @@ struct Words {
   }
 };
 
-// Splits "G1 X1.5 Y-2 E0.1" into letter/number words; stops at ';' or '('.
+bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+
+// M-codes whose argument is free text ("M117 Open the valve"), not address words.
+bool takes_text(const Words& w) {
+  if (w.count != 1 || w.letter[0] != 'M') return false;
+  const double m = w.value[0];
+  return m == 117 || m == 118 || m == 23 || m == 28 || m == 30 || m == 32;
+}
+
+// Splits "G1 X1.5 Y-2 E0.1" into letter/number words; stops at ';' or '('. A word whose
+// number is nan/inf, or a G word followed by something that is not a number, sets
+// bad_number; a bare letter ("G28 X Y") is a flag word and is skipped.
 Words split_words(std::string_view code) {
   Words w;
   std::size_t i = 0;
   while (i < code.size() && w.count < 16) {
     const char c = code[i];
     if (c == ';' || c == '(') break;
-    if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z')) {
-      std::size_t j = i + 1;
-      while (j < code.size() && code[j] == ' ') ++j;
-      std::size_t k = j;
-      if (k < code.size() && code[k] == '+') ++k;
-      double v = 0.0;
-      auto res = std::from_chars(code.data() + k, code.data() + code.size(), v);
-      if (res.ec != std::errc() || !std::isfinite(v)) {
-        w.bad_number = true;
-        std::size_t e = j;
-        while (e < code.size() && code[e] != ' ' && code[e] != ';') ++e;
-        i = e;
-        continue;
-      }
-      w.letter[w.count] = static_cast<char>(c & ~0x20);
-      w.value[w.count] = v;
-      ++w.count;
+    if (!is_letter(c)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < code.size() && code[j] == ' ') ++j;
+    const std::size_t k = j < code.size() && code[j] == '+' ? j + 1 : j;
+    double v = 0.0;
+    const auto res = std::from_chars(code.data() + k, code.data() + code.size(), v);
+    if (res.ec != std::errc()) {
+      const bool bare = k >= code.size() || (is_letter(code[k]) && k > i + 1) || code[k] == ';';
+      if (!bare && w.count > 0 && w.letter[0] == 'G') w.bad_number = true;
+      i = bare ? i + 1 : code.find(' ', k);  // a malformed word is skipped whole
+      continue;
+    }
+    if (!std::isfinite(v)) {  // nan, inf: never used as a coordinate
+      w.bad_number = true;
       i = static_cast<std::size_t>(res.ptr - code.data());
       continue;
     }
-    ++i;
+    w.letter[w.count] = static_cast<char>(c & ~0x20);
+    w.value[w.count] = v;
+    ++w.count;
+    i = static_cast<std::size_t>(res.ptr - code.data());
+    if (takes_text(w)) break;
   }
   return w;
 }
@@ -74,6 +89,15 @@ Feature feature_from_comment(std::string_view name, Feature fallback) {
   for (const char* n : kNames) {
     if (name == n) return slicer::feature_from_string(n);
   }
+  return fallback;
+}
+
+// Another slicer's ;TYPE: role (Cura "WALL-OUTER", "FILL"; PrusaSlicer "Perimeter",
+// "Solid infill") as the nearest feature, so previews colour walls and fills apart.
+Feature feature_from_role(std::string_view role, Feature fallback) {
+  auto has = [role](std::string_view w) { return role.find(w) != std::string_view::npos; };
+  if (has("WALL") || has("erimeter")) return Feature::Wall;
+  if (has("FILL") || has("SKIN") || has("nfill") || has("Bridge")) return Feature::Infill;
   return fallback;
 }
 
@@ -140,10 +164,13 @@ class Reader {
       double z = 0;
       std::from_chars(c.data() + 2, c.data() + c.size(), z);
       out_.program.layers.back().z_mm = z;
+      layer_z_known_ = true;
     } else if (starts_with(c, "HEIGHT:") && !out_.program.layers.empty()) {
       double h = 0;
       std::from_chars(c.data() + 7, c.data() + c.size(), h);
       out_.program.layers.back().height_mm = h;
+    } else if (starts_with(c, "TYPE:")) {
+      feature_ = feature_from_role(c.substr(5), feature_);
     } else if (starts_with(c, "FEATURE:")) {
       feature_ = feature_from_comment(trim(c.substr(8)), feature_);
     } else if (starts_with(c, "WIDTH:")) {
@@ -153,6 +180,7 @@ class Reader {
 
   void new_layer(std::optional<double> z) {
     out_.program.layers.push_back({z.value_or(pos_.z()), 0.0});
+    layer_z_known_ = z.has_value();
     layer_ = static_cast<int>(out_.program.layers.size()) - 1;
     marker_pending_ = true;
   }
@@ -222,6 +250,10 @@ class Reader {
         (layer_ < 0 || std::abs(target.z() - out_.program.layers.back().z_mm) > 1e-6)) {
       new_layer(target.z());
     }
+    if (mv.kind == MoveKind::Deposit && layer_ >= 0 && !layer_z_known_) {
+      out_.program.layers.back().z_mm = target.z();  // Cura: no ;Z:, the z comes after ;LAYER:
+      layer_z_known_ = true;
+    }
     mv.layer = layer_;
     out_.program.moves.push_back(mv);
     out_.move_lines.push_back(n);
@@ -267,6 +299,7 @@ class Reader {
   bool has_markers_ = false;
   bool has_e_ = false;
   bool marker_pending_ = false;
+  bool layer_z_known_ = false;  // the current layer's z came from ;Z: or a deposit
   int layer_ = -1;
   Feature feature_ = Feature::Infill;
 };
