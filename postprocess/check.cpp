@@ -38,7 +38,7 @@ int CheckReport::line_of(std::size_t move) const {
 
 namespace {
 
-// Points of an arc from `from` to `to` that may lie farthest out: its ends, its four axis
+// Points of an arc from `from` to its end that may lie farthest out: its four axis
 // extremes and its point farthest from the origin (delta radius), when within the sweep.
 std::vector<Vec2> arc_extremes(const Vec2& from, const slicer::Move& mv) {
   const Vec2 c = mv.center_mm, to = mv.end_mm.head<2>();
@@ -46,7 +46,7 @@ std::vector<Vec2> arc_extremes(const Vec2& from, const slicer::Move& mv) {
   const double sweep = std::abs(slicer::arc_sweep(c, from, to, mv.ccw));
   std::vector<Vec2> candidates = {c + Vec2(r, 0), c - Vec2(r, 0), c + Vec2(0, r), c - Vec2(0, r)};
   if (c.norm() > 0) candidates.push_back(c + r * c.normalized());
-  std::vector<Vec2> out = {to};
+  std::vector<Vec2> out;
   for (const Vec2& p : candidates) {
     if (std::abs(slicer::arc_sweep(c, from, p, mv.ccw)) <= sweep) out.push_back(p);
   }
@@ -69,12 +69,15 @@ void check_moves(const ParsedGcode& parsed, const machines::MachineProfile& m, C
       add_finding(r.arcs_forbidden, r.arcs_forbidden_total,
                   {line, i, mv.end_mm, "G2/G3 arc, but " + m.name + " does not accept arcs"});
     }
-    std::vector<Vec2> points = mv.is_arc ? arc_extremes(at.head<2>(), mv) : std::vector<Vec2>{mv.end_mm.head<2>()};
-    for (const Vec2& p : points) {
-      const Vec3 q(p.x(), p.y(), mv.end_mm.z());
-      if (auto why = machines::outside_reason(m.volume, q)) {
-        add_finding(r.outside_volume, r.outside_volume_total, {line, i, q, *why});
-        break;
+    if (auto why = machines::outside_reason(m.volume, mv.end_mm)) {
+      add_finding(r.outside_volume, r.outside_volume_total, {line, i, mv.end_mm, *why});
+    } else if (mv.is_arc) {
+      for (const Vec2& p : arc_extremes(at.head<2>(), mv)) {
+        const Vec3 q(p.x(), p.y(), mv.end_mm.z());
+        if (auto bulge = machines::outside_reason(m.volume, q)) {
+          add_finding(r.outside_volume, r.outside_volume_total, {line, i, q, *bulge});
+          break;
+        }
       }
     }
     at = mv.end_mm;
@@ -163,7 +166,7 @@ std::string layer_range(int first, int last) {
 
 // Consecutive layers with equal strands and contact counts share one row.
 std::string layer_table(const CheckReport& r) {
-  std::string out = "layers     z_mm      strands  crossings  touches\n";
+  std::string out = "layers     z_mm             strands  crossings  touches\n";
   for (std::size_t b = 0; b < r.layers.size();) {
     const auto& L = r.layers[b];
     std::size_t e = b + 1;
@@ -173,8 +176,9 @@ std::string layer_table(const CheckReport& r) {
     }
     const auto& last = r.layers[e - 1];
     char row[160];
-    std::snprintf(row, sizeof row, "%-10s %-9s %7d  %9zu  %7zu\n", layer_range(L.layer, last.layer).c_str(),
-                  machines::fmt_xyz(L.z_mm).c_str(), L.strands, L.crossings.size(), L.touches.size());
+    const std::string z = machines::fmt_xyz(L.z_mm) + (e - b > 1 ? "-" + machines::fmt_xyz(last.z_mm) : "");
+    std::snprintf(row, sizeof row, "%-10s %-16s %7d  %9zu  %7zu\n", layer_range(L.layer, last.layer).c_str(),
+                  z.c_str(), L.strands, L.crossings.size(), L.touches.size());
     out += row;
     b = e;
   }

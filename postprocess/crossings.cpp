@@ -133,6 +133,13 @@ void test_pair(const std::vector<Seg>& segs, std::uint32_t i, std::uint32_t j, d
   const Seg& s = segs[i];
   const Seg& t = segs[j];
   if (adjacent(s, t)) return;
+  // Cheap reject: boxes apart by more than `touch` (most pairs sharing a cell).
+  if (std::max(s.a.x(), s.b.x()) + touch < std::min(t.a.x(), t.b.x()) ||
+      std::max(t.a.x(), t.b.x()) + touch < std::min(s.a.x(), s.b.x()) ||
+      std::max(s.a.y(), s.b.y()) + touch < std::min(t.a.y(), t.b.y()) ||
+      std::max(t.a.y(), t.b.y()) + touch < std::min(s.a.y(), s.b.y())) {
+    return;
+  }
   const auto c = slicer::segment_contact(s.a, s.b, t.a, t.b, touch);
   // A joint between consecutive moves split into chords is not a touch.
   if (c == slicer::Contact::None || (c == slicer::Contact::Touch && s.move == t.move)) return;

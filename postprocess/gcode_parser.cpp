@@ -1,6 +1,7 @@
 // Single-pass G-code reader with std::from_chars; linear in the file size.
 #include "postprocess/gcode_parser.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -110,6 +111,10 @@ class Reader {
   }
 
   ParsedGcode run() {
+    // One move per line at most: reserving avoids re-copying a million moves while growing.
+    const auto lines = static_cast<std::size_t>(std::count(text_.begin(), text_.end(), '\n')) + 1;
+    out_.program.moves.reserve(lines);
+    out_.move_lines.reserve(lines);
     std::size_t pos = 0;
     int line_no = 0;
     while (pos <= text_.size()) {
@@ -255,7 +260,7 @@ class Reader {
       layer_z_known_ = true;
     }
     mv.layer = layer_;
-    out_.program.moves.push_back(mv);
+    out_.program.moves.push_back(std::move(mv));
     out_.move_lines.push_back(n);
     if (out_.program.moves.size() == 1) out_.program.start_mm = pos_;
     pos_ = target;
