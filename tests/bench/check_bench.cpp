@@ -8,6 +8,7 @@
 
 #include "machines/profile.h"
 #include "postprocess/check.h"
+#include "postprocess/crossings.h"
 
 namespace {
 
@@ -91,5 +92,49 @@ void BM_ParseMillionMoves(benchmark::State& state) {
   state.counters["lines_per_s"] = benchmark::Counter(1e6, benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_ParseMillionMoves)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+// Pathological layer for the grid: 2,000 dense nodes (3 concentric full circles each,
+// ~100k chords crowding their cells) and 1,000 parallel diagonals 141 mm long, 0.14 mm
+// apart, each crossing ~700 cells and many nodes (~19k real crossings). Target: well
+// under a second.
+strand::slicer::MotionProgram dense_nodes_and_long_lines() {
+  using namespace strand::slicer;
+  MotionProgram p;
+  p.layers.push_back({0.5, 0.5});
+  auto add = [&p](MoveKind kind, double x, double y) {
+    Move mv;
+    mv.kind = kind;
+    mv.end_mm = {x, y, 0.5};
+    mv.layer = 0;
+    p.moves.push_back(mv);
+    return &p.moves.back();
+  };
+  for (int i = 0; i < 2000; ++i) {
+    const Vec2 c(-45.0 + 2.0 * (i % 45), 2.0 * (i / 45) - 45);
+    for (double r : {0.3, 0.5, 0.7}) {
+      add(MoveKind::Travel, c.x() + r, c.y());
+      Move* arc = add(MoveKind::Deposit, c.x() + r, c.y());
+      arc->is_arc = true;
+      arc->center_mm = c;
+    }
+  }
+  for (int i = 0; i < 1000; ++i) {
+    const double o = 0.1 * i - 50;
+    add(MoveKind::Travel, -50 + o, -50 - o + 100.05);
+    add(MoveKind::Deposit, 50 + o, 50 - o + 100.05);
+  }
+  return p;
+}
+
+void BM_ContactsDenseNodesAndLongLines(benchmark::State& state) {
+  const auto p = dense_nodes_and_long_lines();
+  for (auto _ : state) {
+    const auto r = strand::post::find_contacts(p, 0.01, 1e-3);
+    benchmark::DoNotOptimize(r.crossings.data());
+    state.counters["crossings"] = static_cast<double>(r.crossings.size());
+  }
+  state.counters["segments_moves"] = static_cast<double>(p.moves.size());
+}
+BENCHMARK(BM_ContactsDenseNodesAndLongLines)->Unit(benchmark::kMillisecond);
 
 }  // namespace
