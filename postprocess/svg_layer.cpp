@@ -108,6 +108,26 @@ std::string scale_bar(const Vec2& lo, const Vec2& hi, double margin) {
          "\" font-family=\"sans-serif\">" + machines::fmt_fixed(len, len < 1 ? 3 : 0) + " mm</text></g>\n";
 }
 
+// One swatch and name per feature drawn, in enum order, along the top margin.
+std::string legend(const std::vector<Run>& runs, const Vec2& lo, double margin) {
+  std::vector<bool> present(static_cast<std::size_t>(Feature::Pen) + 1, false);
+  for (const Run& r : runs) {
+    if (r.deposit) present[static_cast<std::size_t>(r.feature)] = true;
+  }
+  std::string out = "<g class=\"legend\">";
+  double x = lo.x();
+  const double y = lo.y() - margin * 0.5, t = margin * 0.15;
+  for (std::size_t f = 0; f < present.size(); ++f) {
+    if (!present[f]) continue;
+    const std::string name = slicer::to_string(static_cast<Feature>(f));
+    out += "<rect x=\"" + num(x) + "\" y=\"" + num(y - t) + "\" width=\"" + num(margin * 0.6) + "\" height=\"" + num(2 * t) +
+           "\" fill=\"" + colour(static_cast<Feature>(f)) + "\"/><text x=\"" + num(x + margin * 0.7) + "\" y=\"" +
+           num(y + t) + "\" font-size=\"" + num(margin * 0.4) + "\" font-family=\"sans-serif\">" + name + "</text>";
+    x += margin * (1.0 + 0.25 * static_cast<double>(name.size()));
+  }
+  return out + "</g>\n";
+}
+
 }  // namespace
 
 std::string layer_svg(const slicer::MotionProgram& p, int layer, const LayerMarks& marks, double tol) {
@@ -130,6 +150,7 @@ std::string layer_svg(const slicer::MotionProgram& p, int layer, const LayerMark
   out += markers(marks.touches, "#ff8c00", mark_r);
   out += markers(marks.crossings, "#e00000", mark_r);
   out += scale_bar(lo, hi, margin);
+  out += legend(runs, lo, margin);
   return out + "</svg>\n";
 }
 

@@ -77,6 +77,8 @@ void BM_CheckMillionMoves(benchmark::State& state) {
   for (auto _ : state) {
     const auto r = post::check_gcode(text(), o);
     moves = r.moves;
+    state.counters["crossings"] = static_cast<double>(r.crossing_count());
+    state.counters["touches"] = static_cast<double>(r.touch_count());
     benchmark::DoNotOptimize(r.layers.data());
   }
   state.counters["moves"] = static_cast<double>(moves);

@@ -39,6 +39,8 @@ TEST(SvgLayer, FeaturesTravelsAndScaleBarAreDrawn) {
   EXPECT_EQ(count(svg, "class=\"ligament\""), 1u);
   EXPECT_NE(svg.find("stroke-dasharray"), std::string::npos) << "travel from the node to the ligament";
   EXPECT_NE(svg.find(" mm</text>"), std::string::npos) << "scale bar";
+  EXPECT_NE(svg.find(">node</text>"), std::string::npos) << "legend";
+  EXPECT_EQ(svg.find(">infill</text>"), std::string::npos) << "legend lists only features drawn";
 }
 
 TEST(SvgLayer, OnlyTheChosenLayerIsDrawn) {
