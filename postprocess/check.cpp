@@ -2,6 +2,7 @@
 // volume, parse problems; the strand count comes from estimate(), contacts from crossings.
 #include "postprocess/check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -90,12 +91,11 @@ void fill_layers(const ParsedGcode& parsed, const CheckOptions& o, CheckReport& 
   const Estimate est = estimate(parsed.program);
   for (const auto& le : est.layers) r.layers.push_back({le.layer, le.z_mm, le.strands, {}, {}});
   const ContactReport contacts = find_contacts(parsed.program, o.arc_tolerance_mm, o.touch_mm);
+  const bool before_first = std::any_of(contacts.crossings.begin(), contacts.crossings.end(), [](const Contact& c) { return c.layer < 0; }) ||
+                            std::any_of(contacts.touches.begin(), contacts.touches.end(), [](const Contact& c) { return c.layer < 0; });
+  if (before_first) r.layers.insert(r.layers.begin(), {-1, parsed.program.start_mm.z(), 0, {}, {}});
   auto row = [&](int layer) -> LayerCheck& {
-    if (layer >= 0 && layer < static_cast<int>(r.layers.size())) return r.layers[static_cast<std::size_t>(layer)];
-    if (r.layers.empty() || r.layers.front().layer != -1) {
-      r.layers.insert(r.layers.begin(), {-1, parsed.program.start_mm.z(), 0, {}, {}});
-    }
-    return r.layers.front();
+    return r.layers[static_cast<std::size_t>(std::max(layer, -1) + (before_first ? 1 : 0))];
   };
   for (const auto& c : contacts.crossings) row(c.layer).crossings.push_back(c);
   for (const auto& c : contacts.touches) row(c.layer).touches.push_back(c);

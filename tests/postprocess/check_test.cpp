@@ -115,6 +115,16 @@ TEST(Check, ThesisScaffoldPassesWithOneStrandPerLayer) {
   for (const auto& l : r.layers) EXPECT_EQ(l.strands, 1) << "layer " << l.layer;
 }
 
+TEST(Check, ContactsBeforeTheFirstLayerGetTheirOwnRow) {
+  const auto r = check("G0 X0 Y0 Z0.3\nG1 X10 Y10\nG1 X10 Y0\nG1 X0 Y10\n;LAYER:0\nG0 X0 Y0 Z0.5\nG1 X10\nG0 X5 Y5\nG1 X5 Y0\n");
+  ASSERT_EQ(r.layers.size(), 2u);
+  EXPECT_EQ(r.layers[0].layer, -1);
+  EXPECT_EQ(r.layers[0].crossings.size(), 1u);
+  EXPECT_EQ(r.layers[1].layer, 0);
+  EXPECT_EQ(r.layers[1].touches.size(), 1u);
+  EXPECT_TRUE(r.layers[1].crossings.empty());
+}
+
 TEST(Check, JsonCarriesTheVerdictAndTheContacts) {
   const auto j = to_json(check(";LAYER:0\nG0 X0 Y0 Z0.5\nG1 X10 Y10\nG1 X10 Y0\nG1 X0 Y10\n"));
   EXPECT_FALSE(j["ok"].get<bool>());
