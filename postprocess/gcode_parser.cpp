@@ -198,7 +198,7 @@ class Reader {
   void g_code(int code, const Words& w, int n) {
     switch (code) {
       case 0: case 1: case 2: case 3: motion(code, w, n); break;
-      case 4: dwell(w); break;
+      case 4: dwell(w, n); break;
       case 20:
         scale_ = slicer::kMmPerInch;
         if (!out_.inches) out_.issues.push_back({n, "inch units (G20): coordinates converted to mm"});
@@ -217,7 +217,7 @@ class Reader {
     }
   }
 
-  void dwell(const Words& w) {
+  void dwell(const Words& w, int n) {
     Move mv;
     mv.kind = MoveKind::Dwell;
     mv.end_mm = pos_;
@@ -225,6 +225,7 @@ class Reader {
     if (auto p = w.get('P')) mv.dwell_s = *p / 1000.0;
     mv.layer = layer_;
     out_.program.moves.push_back(mv);
+    out_.move_lines.push_back(n);  // one line per move, dwells included
   }
 
   void motion(int code, const Words& w, int n) {

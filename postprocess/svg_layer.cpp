@@ -48,7 +48,7 @@ struct Bounds {
 Vec2 flip(const Vec2& p) { return {p.x(), -p.y()}; }
 
 // Runs of consecutive moves of the layer with the same kind, feature and width.
-std::vector<Run> collect_runs(const slicer::MotionProgram& p, int layer, double tol, Bounds& b) {
+std::vector<Run> collect_runs(const slicer::MotionProgram& p, int layer, double tol) {
   std::vector<Run> runs;
   slicer::Vec3 at = p.start_mm;
   for (const auto& mv : p.moves) {
@@ -60,15 +60,33 @@ std::vector<Run> collect_runs(const slicer::MotionProgram& p, int layer, double 
     const bool joins = !runs.empty() && runs.back().deposit == dep && runs.back().feature == mv.feature &&
                        runs.back().width_mm == mv.width_mm && (runs.back().points.back() - flip(from)).norm() == 0.0;
     if (!joins) runs.push_back({dep, mv.feature, mv.width_mm, {flip(from)}});
-    b.add(from);
     if (mv.is_arc) {
-      for (const Vec2& q : segment_arc(from, mv.center_mm, to, mv.ccw, tol)) runs.back().points.push_back(flip(q)), b.add(q);
+      for (const Vec2& q : segment_arc(from, mv.center_mm, to, mv.ccw, tol)) runs.back().points.push_back(flip(q));
     } else {
       runs.back().points.push_back(flip(to));
-      b.add(to);
     }
   }
   return runs;
+}
+
+// The drawing's extent: deposits and marks; travels only when the layer has no deposit
+// (a travel from the machine's home would otherwise shrink the part to a dot).
+Bounds bounds_of(const std::vector<Run>& runs, const LayerMarks& marks) {
+  Bounds b;
+  for (const Run& r : runs) {
+    for (const Vec2& p : r.points) {
+      if (r.deposit) b.add(flip(p));
+    }
+  }
+  for (const auto& c : marks.crossings) b.add(c.at_mm);
+  for (const auto& c : marks.touches) b.add(c.at_mm);
+  if (!std::isfinite(b.lo.x())) {
+    for (const Run& r : runs) {
+      for (const Vec2& p : r.points) b.add(flip(p));
+    }
+  }
+  if (!std::isfinite(b.lo.x())) b.add(Vec2::Zero()), b.add(Vec2(1, 1));
+  return b;
 }
 
 std::string path_d(const std::vector<Vec2>& pts) {
@@ -97,9 +115,11 @@ std::string markers(const std::vector<Contact>& cs, const char* stroke, double r
   return out;
 }
 
-// A bar of a round length (1, 2 or 5 x 10^k mm) about a fifth of the width, bottom left.
+// A bar of a round length (1, 2 or 5 x 10^k mm), about a fifth of the drawing's larger
+// side but at most half its width, bottom left.
 std::string scale_bar(const Vec2& lo, const Vec2& hi, double margin) {
-  const double target = (hi.x() - lo.x()) / 5;
+  const double size = std::max(hi.x() - lo.x(), hi.y() - lo.y());
+  const double target = std::min(size / 5, (hi.x() - lo.x() + 2 * margin) / 2);
   const double p10 = std::pow(10.0, std::floor(std::log10(std::max(target, 1e-3))));
   const double len = target >= 5 * p10 ? 5 * p10 : (target >= 2 * p10 ? 2 * p10 : p10);
   const double x = lo.x(), y = hi.y() + margin * 0.6, t = margin * 0.15;
@@ -131,11 +151,8 @@ std::string legend(const std::vector<Run>& runs, const Vec2& lo, double margin) 
 }  // namespace
 
 std::string layer_svg(const slicer::MotionProgram& p, int layer, const LayerMarks& marks, double tol) {
-  Bounds b;
-  const std::vector<Run> runs = collect_runs(p, layer, tol, b);
-  for (const auto& c : marks.crossings) b.add(c.at_mm);
-  for (const auto& c : marks.touches) b.add(c.at_mm);
-  if (!std::isfinite(b.lo.x())) b.add(Vec2::Zero()), b.add(Vec2(1, 1));
+  const std::vector<Run> runs = collect_runs(p, layer, tol);
+  const Bounds b = bounds_of(runs, marks);
   const Vec2 lo = flip(Vec2(b.lo.x(), b.hi.y())), hi = flip(Vec2(b.hi.x(), b.lo.y()));
   const double size = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1.0});
   const double margin = size * 0.08, width = std::clamp(size / 200, 0.05, 0.4);

@@ -61,6 +61,12 @@ TEST(Check, MoveOutsideTheDeltaRadiusIsFound) {
   EXPECT_FALSE(r.ok());
 }
 
+TEST(Check, LinesStayRightAfterADwell) {
+  const auto r = check("G0 X0 Y0 Z0.5\nG4 P500\nG1 X50 Y0\nG1 X120 Y0\n", &delta());
+  ASSERT_EQ(r.outside_volume.size(), 1u);
+  EXPECT_EQ(r.outside_volume[0].line, 4);
+}
+
 TEST(Check, ArcBulgingOutOfTheVolumeIsFoundThoughItsEndsAreInside) {
   // Both ends at radius 83.8 mm; the ccw arc passes (105, 0), the cw arc (55, 0).
   const auto out = check("G0 X80 Y-25 Z0.5\nG3 X80 Y25 I0 J25\n", &delta());
