@@ -91,8 +91,10 @@ void fill_layers(const ParsedGcode& parsed, const CheckOptions& o, CheckReport& 
   const Estimate est = estimate(parsed.program);
   for (const auto& le : est.layers) r.layers.push_back({le.layer, le.z_mm, le.strands, {}, {}});
   const ContactReport contacts = find_contacts(parsed.program, o.arc_tolerance_mm, o.touch_mm);
-  const bool before_first = std::any_of(contacts.crossings.begin(), contacts.crossings.end(), [](const Contact& c) { return c.layer < 0; }) ||
-                            std::any_of(contacts.touches.begin(), contacts.touches.end(), [](const Contact& c) { return c.layer < 0; });
+  const bool before_first = std::any_of(contacts.crossings.begin(), contacts.crossings.end(),
+                                        [](const Contact& c) { return c.layer < 0; }) ||
+                            std::any_of(contacts.touches.begin(), contacts.touches.end(),
+                                        [](const Contact& c) { return c.layer < 0; });
   if (before_first) r.layers.insert(r.layers.begin(), {-1, parsed.program.start_mm.z(), 0, {}, {}});
   auto row = [&](int layer) -> LayerCheck& {
     return r.layers[static_cast<std::size_t>(std::max(layer, -1) + (before_first ? 1 : 0))];
@@ -106,16 +108,23 @@ std::string xy(const Vec2& p) {
 }
 
 std::string xyz(const Vec3& p) {
-  return "(" + machines::fmt_xyz(p.x()) + ", " + machines::fmt_xyz(p.y()) + ", " + machines::fmt_xyz(p.z()) + ")";
+  return "(" + machines::fmt_xyz(p.x()) + ", " + machines::fmt_xyz(p.y()) + ", " +
+         machines::fmt_xyz(p.z()) + ")";
 }
 
 nlohmann::json contact_json(const Contact& c, const CheckReport& r) {
-  return {{"x_mm", c.at_mm.x()}, {"y_mm", c.at_mm.y()}, {"line_a", r.line_of(c.move_a)},
+  return {{"x_mm", c.at_mm.x()},
+          {"y_mm", c.at_mm.y()},
+          {"line_a", r.line_of(c.move_a)},
           {"line_b", r.line_of(c.move_b)}};
 }
 
 nlohmann::json finding_json(const Finding& f) {
-  return {{"line", f.line}, {"x_mm", f.at_mm.x()}, {"y_mm", f.at_mm.y()}, {"z_mm", f.at_mm.z()}, {"what", f.what}};
+  return {{"line", f.line},
+          {"x_mm", f.at_mm.x()},
+          {"y_mm", f.at_mm.y()},
+          {"z_mm", f.at_mm.z()},
+          {"what", f.what}};
 }
 
 }  // namespace
@@ -143,17 +152,28 @@ nlohmann::json to_json(const CheckReport& r) {
     nlohmann::json cross = nlohmann::json::array(), touch = nlohmann::json::array();
     for (const auto& c : l.crossings) cross.push_back(contact_json(c, r));
     for (const auto& c : l.touches) touch.push_back(contact_json(c, r));
-    layers.push_back({{"layer", l.layer}, {"z_mm", l.z_mm}, {"strands", l.strands},
-                      {"crossings", cross}, {"touches", touch}});
+    layers.push_back({{"layer", l.layer},
+                      {"z_mm", l.z_mm},
+                      {"strands", l.strands},
+                      {"crossings", cross},
+                      {"touches", touch}});
   }
-  nlohmann::json issues = nlohmann::json::array(), arcs = nlohmann::json::array(), outside = nlohmann::json::array();
+  nlohmann::json issues = nlohmann::json::array(), arcs = nlohmann::json::array(),
+                 outside = nlohmann::json::array();
   for (const auto& i : r.parse_issues) issues.push_back({{"line", i.line}, {"what", i.what}});
   for (const auto& f : r.arcs_forbidden) arcs.push_back(finding_json(f));
   for (const auto& f : r.outside_volume) outside.push_back(finding_json(f));
-  return {{"ok", r.ok()}, {"machine", r.machine}, {"moves", r.moves}, {"layers", layers},
-          {"crossings", r.crossing_count()}, {"touches", r.touch_count()},
-          {"parse_issues", issues}, {"arcs_forbidden", arcs}, {"arcs_forbidden_total", r.arcs_forbidden_total},
-          {"outside_volume", outside}, {"outside_volume_total", r.outside_volume_total}};
+  return {{"ok", r.ok()},
+          {"machine", r.machine},
+          {"moves", r.moves},
+          {"layers", layers},
+          {"crossings", r.crossing_count()},
+          {"touches", r.touch_count()},
+          {"parse_issues", issues},
+          {"arcs_forbidden", arcs},
+          {"arcs_forbidden_total", r.arcs_forbidden_total},
+          {"outside_volume", outside},
+          {"outside_volume_total", r.outside_volume_total}};
 }
 
 namespace {
@@ -170,15 +190,18 @@ std::string layer_table(const CheckReport& r) {
   for (std::size_t b = 0; b < r.layers.size();) {
     const auto& L = r.layers[b];
     std::size_t e = b + 1;
-    while (e < r.layers.size() && r.layers[e].strands == L.strands && r.layers[e].crossings.size() == L.crossings.size() &&
+    while (e < r.layers.size() && r.layers[e].strands == L.strands &&
+           r.layers[e].crossings.size() == L.crossings.size() &&
            r.layers[e].touches.size() == L.touches.size()) {
       ++e;
     }
     const auto& last = r.layers[e - 1];
     char row[160];
-    const std::string z = machines::fmt_xyz(L.z_mm) + (e - b > 1 ? "-" + machines::fmt_xyz(last.z_mm) : "");
-    std::snprintf(row, sizeof row, "%-10s %-16s %7d  %9zu  %7zu\n", layer_range(L.layer, last.layer).c_str(),
-                  z.c_str(), L.strands, L.crossings.size(), L.touches.size());
+    const std::string z =
+        machines::fmt_xyz(L.z_mm) + (e - b > 1 ? "-" + machines::fmt_xyz(last.z_mm) : "");
+    std::snprintf(row, sizeof row, "%-10s %-16s %7d  %9zu  %7zu\n",
+                  layer_range(L.layer, last.layer).c_str(), z.c_str(), L.strands,
+                  L.crossings.size(), L.touches.size());
     out += row;
     b = e;
   }
@@ -190,9 +213,10 @@ void list_contacts(const CheckReport& r, bool crossings, std::string& out) {
   for (const auto& l : r.layers) {
     for (const auto& c : crossings ? l.crossings : l.touches) {
       if (listed++ < kTextListed) {
-        out += std::string(crossings ? "  crossing" : "  touch") + " in layer " + std::to_string(l.layer) + " at " +
-               xy(c.at_mm) + " mm: lines " + std::to_string(r.line_of(c.move_a)) + " and " +
-               std::to_string(r.line_of(c.move_b)) + "\n";
+        out += std::string(crossings ? "  crossing" : "  touch") + " in layer " +
+               std::to_string(l.layer) + " at " + xy(c.at_mm) + " mm: lines " +
+               std::to_string(r.line_of(c.move_a)) + " and " + std::to_string(r.line_of(c.move_b)) +
+               "\n";
       }
       ++total;
     }
@@ -202,7 +226,8 @@ void list_contacts(const CheckReport& r, bool crossings, std::string& out) {
 
 void list_findings(const std::vector<Finding>& list, std::size_t total, std::string& out) {
   for (std::size_t i = 0; i < list.size() && i < kTextListed; ++i) {
-    out += "  line " + std::to_string(list[i].line) + " at " + xyz(list[i].at_mm) + " mm: " + list[i].what + "\n";
+    out += "  line " + std::to_string(list[i].line) + " at " + xyz(list[i].at_mm) +
+           " mm: " + list[i].what + "\n";
   }
   if (total > kTextListed) out += "  ... and " + std::to_string(total - kTextListed) + " more\n";
 }
@@ -210,21 +235,31 @@ void list_findings(const std::vector<Finding>& list, std::size_t total, std::str
 }  // namespace
 
 std::string to_text(const CheckReport& r) {
-  std::string out = std::to_string(r.layers.size()) + " layers, " + std::to_string(r.moves) + " moves" +
-                    (r.machine.empty() ? ", no machine given (bounds and arcs not checked)" : ", machine " + r.machine) + "\n";
+  std::string out = std::to_string(r.layers.size()) + " layers, " + std::to_string(r.moves) +
+                    " moves" +
+                    (r.machine.empty() ? ", no machine given (bounds and arcs not checked)"
+                                       : ", machine " + r.machine) +
+                    "\n";
   out += layer_table(r);
-  if (r.crossing_count() > 0) out += "self-crossings (" + std::to_string(r.crossing_count()) + "):\n";
+  if (r.crossing_count() > 0)
+    out += "self-crossings (" + std::to_string(r.crossing_count()) + "):\n";
   list_contacts(r, true, out);
-  if (r.arcs_forbidden_total > 0) out += "arcs the machine forbids (" + std::to_string(r.arcs_forbidden_total) + "):\n";
+  if (r.arcs_forbidden_total > 0)
+    out += "arcs the machine forbids (" + std::to_string(r.arcs_forbidden_total) + "):\n";
   list_findings(r.arcs_forbidden, r.arcs_forbidden_total, out);
-  if (r.outside_volume_total > 0) out += "moves outside the build volume (" + std::to_string(r.outside_volume_total) + "):\n";
+  if (r.outside_volume_total > 0)
+    out += "moves outside the build volume (" + std::to_string(r.outside_volume_total) + "):\n";
   list_findings(r.outside_volume, r.outside_volume_total, out);
-  if (!r.parse_issues.empty()) out += "problems in the file (" + std::to_string(r.parse_issues.size()) + "):\n";
+  if (!r.parse_issues.empty())
+    out += "problems in the file (" + std::to_string(r.parse_issues.size()) + "):\n";
   for (std::size_t i = 0; i < r.parse_issues.size() && i < kTextListed; ++i) {
-    out += "  line " + std::to_string(r.parse_issues[i].line) + ": " + r.parse_issues[i].what + "\n";
+    out +=
+        "  line " + std::to_string(r.parse_issues[i].line) + ": " + r.parse_issues[i].what + "\n";
   }
-  if (r.parse_issues.size() > kTextListed) out += "  ... and " + std::to_string(r.parse_issues.size() - kTextListed) + " more\n";
-  if (r.touch_count() > 0) out += "touches (allowed, listed for review: " + std::to_string(r.touch_count()) + "):\n";
+  if (r.parse_issues.size() > kTextListed)
+    out += "  ... and " + std::to_string(r.parse_issues.size() - kTextListed) + " more\n";
+  if (r.touch_count() > 0)
+    out += "touches (allowed, listed for review: " + std::to_string(r.touch_count()) + "):\n";
   list_contacts(r, false, out);
   out += r.ok() ? "check: OK\n" : "check: FAILED\n";
   return out;

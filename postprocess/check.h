@@ -28,29 +28,29 @@ struct LayerCheck {
 
 // One problem tied to a move: where it is and why.
 struct Finding {
-  int line = 0;                 // 1-based line in the G-code
-  std::size_t move = 0;         // index into the parsed MotionProgram::moves
+  int line = 0;          // 1-based line in the G-code
+  std::size_t move = 0;  // index into the parsed MotionProgram::moves
   slicer::Vec3 at_mm = slicer::Vec3::Zero();
   std::string what;
 };
 
 struct CheckReport {
   std::vector<LayerCheck> layers;
-  std::vector<ParseIssue> parse_issues;   // non-finite or malformed numbers, inch units, ...
-  std::vector<Finding> arcs_forbidden;    // G2/G3 on a machine with arcs == false
-  std::vector<Finding> outside_volume;    // move end (or arc bulge) outside the build volume
-  std::size_t arcs_forbidden_total = 0;   // the vectors keep the first kMaxFindings only
+  std::vector<ParseIssue> parse_issues;  // non-finite or malformed numbers, inch units, ...
+  std::vector<Finding> arcs_forbidden;   // G2/G3 on a machine with arcs == false
+  std::vector<Finding> outside_volume;   // move end (or arc bulge) outside the build volume
+  std::size_t arcs_forbidden_total = 0;  // the vectors keep the first kMaxFindings only
   std::size_t outside_volume_total = 0;
   std::size_t moves = 0;
-  std::string machine;                    // profile name, empty when none was given
-  std::vector<int> move_lines;            // G-code line of each parsed move
+  std::string machine;          // profile name, empty when none was given
+  std::vector<int> move_lines;  // G-code line of each parsed move
 
   static constexpr std::size_t kMaxFindings = 1000;
   // False on crossings, forbidden arcs, outside moves and parse issues; touches are fine.
   bool ok() const;
   std::size_t crossing_count() const;
   std::size_t touch_count() const;
-  int line_of(std::size_t move) const;    // 0 when unknown
+  int line_of(std::size_t move) const;  // 0 when unknown
 };
 
 CheckReport check_gcode(std::string_view gcode_text, const CheckOptions& options);

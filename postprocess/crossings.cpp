@@ -72,8 +72,12 @@ struct Grid {
   Vec2 lo;
   double cell;
   std::int64_t nx;
-  std::int64_t col(double x) const { return static_cast<std::int64_t>(std::floor((x - lo.x()) / cell)); }
-  std::int64_t row(double y) const { return static_cast<std::int64_t>(std::floor((y - lo.y()) / cell)); }
+  std::int64_t col(double x) const {
+    return static_cast<std::int64_t>(std::floor((x - lo.x()) / cell));
+  }
+  std::int64_t row(double y) const {
+    return static_cast<std::int64_t>(std::floor((y - lo.y()) / cell));
+  }
   std::uint64_t key(std::int64_t cx, std::int64_t cy) const {
     return static_cast<std::uint64_t>((cy + 1) * (nx + 3) + (cx + 1));
   }
@@ -113,10 +117,13 @@ void rasterise(const Grid& g, const Seg& s, std::uint32_t id, double pad,
   for (std::int64_t cx = c0; cx <= c1; ++cx) {
     const double x_lo = std::max(p.x(), g.lo.x() + static_cast<double>(cx) * g.cell - pad);
     const double x_hi = std::min(q.x(), g.lo.x() + static_cast<double>(cx + 1) * g.cell + pad);
-    auto y_at = [&](double x) { return dx <= 0 ? p.y() : p.y() + (q.y() - p.y()) * (x - p.x()) / dx; };
+    auto y_at = [&](double x) {
+      return dx <= 0 ? p.y() : p.y() + (q.y() - p.y()) * (x - p.x()) / dx;
+    };
     const double y_lo = dx <= 0 ? std::min(p.y(), q.y()) : std::min(y_at(x_lo), y_at(x_hi));
     const double y_hi = dx <= 0 ? std::max(p.y(), q.y()) : std::max(y_at(x_lo), y_at(x_hi));
-    for (std::int64_t cy = g.row(y_lo - pad); cy <= g.row(y_hi + pad); ++cy) out.emplace_back(g.key(cx, cy), id);
+    for (std::int64_t cy = g.row(y_lo - pad); cy <= g.row(y_hi + pad); ++cy)
+      out.emplace_back(g.key(cx, cy), id);
   }
 }
 
@@ -165,7 +172,8 @@ void check_layer(const LayerSegs& L, double touch, ContactReport& out) {
     std::size_t e = b + 1;
     while (e < cells.size() && cells[e].first == cells[b].first) ++e;
     for (std::size_t i = b; i < e; ++i) {
-      for (std::size_t j = i + 1; j < e; ++j) test_pair(segs, cells[i].second, cells[j].second, touch, found);
+      for (std::size_t j = i + 1; j < e; ++j)
+        test_pair(segs, cells[i].second, cells[j].second, touch, found);
     }
     b = e;
   }
@@ -175,7 +183,8 @@ void check_layer(const LayerSegs& L, double touch, ContactReport& out) {
     const Seg& s = segs[f.i];
     const Seg& t = segs[f.j];
     if (f.kind == slicer::Contact::Crossing) {
-      out.crossings.push_back({L.layer, slicer::crossing_point(s.a, s.b, t.a, t.b), s.move, t.move});
+      out.crossings.push_back(
+          {L.layer, slicer::crossing_point(s.a, s.b, t.a, t.b), s.move, t.move});
     } else {
       out.touches.push_back({L.layer, touch_point(s, t, touch), s.move, t.move});
     }

@@ -21,14 +21,22 @@ std::string num(double v) { return machines::fmt_xyz(v); }
 // Feature colours (colour-blind safe Okabe-Ito palette where possible).
 const char* colour(Feature f) {
   switch (f) {
-    case Feature::Infill: return "#0072b2";
-    case Feature::Wall: return "#009e73";
-    case Feature::Ligament: return "#56b4e9";
-    case Feature::Node: return "#cc79a7";
-    case Feature::Grip: return "#e69f00";
-    case Feature::Frame: return "#999933";
-    case Feature::Link: return "#888888";
-    case Feature::Pen: return "#000000";
+    case Feature::Infill:
+      return "#0072b2";
+    case Feature::Wall:
+      return "#009e73";
+    case Feature::Ligament:
+      return "#56b4e9";
+    case Feature::Node:
+      return "#cc79a7";
+    case Feature::Grip:
+      return "#e69f00";
+    case Feature::Frame:
+      return "#999933";
+    case Feature::Link:
+      return "#888888";
+    case Feature::Pen:
+      return "#000000";
   }
   return "#000000";
 }
@@ -57,11 +65,13 @@ std::vector<Run> collect_runs(const slicer::MotionProgram& p, int layer, double 
     at = mv.end_mm;
     if (mv.layer != layer || ((to - from).norm() == 0.0 && !mv.is_arc)) continue;
     const bool dep = mv.kind == MoveKind::Deposit;
-    const bool joins = !runs.empty() && runs.back().deposit == dep && runs.back().feature == mv.feature &&
-                       runs.back().width_mm == mv.width_mm && (runs.back().points.back() - flip(from)).norm() == 0.0;
+    const bool joins = !runs.empty() && runs.back().deposit == dep &&
+                       runs.back().feature == mv.feature && runs.back().width_mm == mv.width_mm &&
+                       (runs.back().points.back() - flip(from)).norm() == 0.0;
     if (!joins) runs.push_back({dep, mv.feature, mv.width_mm, {flip(from)}});
     if (mv.is_arc) {
-      for (const Vec2& q : segment_arc(from, mv.center_mm, to, mv.ccw, tol)) runs.back().points.push_back(flip(q));
+      for (const Vec2& q : segment_arc(from, mv.center_mm, to, mv.ccw, tol))
+        runs.back().points.push_back(flip(q));
     } else {
       runs.back().points.push_back(flip(to));
     }
@@ -98,19 +108,22 @@ std::string path_d(const std::vector<Vec2>& pts) {
 std::string run_svg(const Run& r, double default_width_mm) {
   if (!r.deposit) {
     return "<path d=\"" + path_d(r.points) + "\" fill=\"none\" stroke=\"#777777\" stroke-width=\"" +
-           num(default_width_mm / 4) + "\" stroke-dasharray=\"" + num(default_width_mm) + " " + num(default_width_mm) + "\"/>\n";
+           num(default_width_mm / 4) + "\" stroke-dasharray=\"" + num(default_width_mm) + " " +
+           num(default_width_mm) + "\"/>\n";
   }
   const double w = r.width_mm > 0 ? r.width_mm : default_width_mm;
-  return "<path class=\"" + slicer::to_string(r.feature) + "\" d=\"" + path_d(r.points) + "\" fill=\"none\" stroke=\"" +
-         colour(r.feature) + "\" stroke-opacity=\"0.7\" stroke-width=\"" + num(w) +
+  return "<path class=\"" + slicer::to_string(r.feature) + "\" d=\"" + path_d(r.points) +
+         "\" fill=\"none\" stroke=\"" + colour(r.feature) +
+         "\" stroke-opacity=\"0.7\" stroke-width=\"" + num(w) +
          "\" stroke-linecap=\"round\" stroke-linejoin=\"round\"/>\n";
 }
 
 std::string markers(const std::vector<Contact>& cs, const char* stroke, double radius_mm) {
   std::string out;
   for (const auto& c : cs) {
-    out += "<circle cx=\"" + num(c.at_mm.x()) + "\" cy=\"" + num(-c.at_mm.y()) + "\" r=\"" + num(radius_mm) +
-           "\" fill=\"none\" stroke=\"" + stroke + "\" stroke-width=\"" + num(radius_mm / 4) + "\"/>\n";
+    out += "<circle cx=\"" + num(c.at_mm.x()) + "\" cy=\"" + num(-c.at_mm.y()) + "\" r=\"" +
+           num(radius_mm) + "\" fill=\"none\" stroke=\"" + stroke + "\" stroke-width=\"" +
+           num(radius_mm / 4) + "\"/>\n";
   }
   return out;
 }
@@ -123,9 +136,11 @@ std::string scale_bar(const Vec2& lo, const Vec2& hi, double margin) {
   const double p10 = std::pow(10.0, std::floor(std::log10(std::max(target, 1e-3))));
   const double len = target >= 5 * p10 ? 5 * p10 : (target >= 2 * p10 ? 2 * p10 : p10);
   const double x = lo.x(), y = hi.y() + margin * 0.6, t = margin * 0.15;
-  return "<g class=\"scale\"><rect x=\"" + num(x) + "\" y=\"" + num(y - t / 2) + "\" width=\"" + num(len) + "\" height=\"" + num(t) +
-         "\" fill=\"#000000\"/><text x=\"" + num(x + len + t) + "\" y=\"" + num(y + t) + "\" font-size=\"" + num(margin * 0.4) +
-         "\" font-family=\"sans-serif\">" + machines::fmt_fixed(len, len < 1 ? 3 : 0) + " mm</text></g>\n";
+  return "<g class=\"scale\"><rect x=\"" + num(x) + "\" y=\"" + num(y - t / 2) + "\" width=\"" +
+         num(len) + "\" height=\"" + num(t) + "\" fill=\"#000000\"/><text x=\"" + num(x + len + t) +
+         "\" y=\"" + num(y + t) + "\" font-size=\"" + num(margin * 0.4) +
+         "\" font-family=\"sans-serif\">" + machines::fmt_fixed(len, len < 1 ? 3 : 0) +
+         " mm</text></g>\n";
 }
 
 // One swatch and name per feature drawn, in enum order, along the top margin.
@@ -140,9 +155,10 @@ std::string legend(const std::vector<Run>& runs, const Vec2& lo, double margin) 
   for (std::size_t f = 0; f < present.size(); ++f) {
     if (!present[f]) continue;
     const std::string name = slicer::to_string(static_cast<Feature>(f));
-    out += "<rect x=\"" + num(x) + "\" y=\"" + num(y - t) + "\" width=\"" + num(margin * 0.6) + "\" height=\"" + num(2 * t) +
-           "\" fill=\"" + colour(static_cast<Feature>(f)) + "\"/><text x=\"" + num(x + margin * 0.7) + "\" y=\"" +
-           num(y + t) + "\" font-size=\"" + num(margin * 0.4) + "\" font-family=\"sans-serif\">" + name + "</text>";
+    out += "<rect x=\"" + num(x) + "\" y=\"" + num(y - t) + "\" width=\"" + num(margin * 0.6) +
+           "\" height=\"" + num(2 * t) + "\" fill=\"" + colour(static_cast<Feature>(f)) +
+           "\"/><text x=\"" + num(x + margin * 0.7) + "\" y=\"" + num(y + t) + "\" font-size=\"" +
+           num(margin * 0.4) + "\" font-family=\"sans-serif\">" + name + "</text>";
     x += margin * (1.0 + 0.25 * static_cast<double>(name.size()));
   }
   return out + "</g>\n";
@@ -150,18 +166,22 @@ std::string legend(const std::vector<Run>& runs, const Vec2& lo, double margin) 
 
 }  // namespace
 
-std::string layer_svg(const slicer::MotionProgram& p, int layer, const LayerMarks& marks, double tol) {
+std::string layer_svg(const slicer::MotionProgram& p, int layer, const LayerMarks& marks,
+                      double tol) {
   const std::vector<Run> runs = collect_runs(p, layer, tol);
   const Bounds b = bounds_of(runs, marks);
   const Vec2 lo = flip(Vec2(b.lo.x(), b.hi.y())), hi = flip(Vec2(b.hi.x(), b.lo.y()));
   const double size = std::max({hi.x() - lo.x(), hi.y() - lo.y(), 1.0});
   const double margin = size * 0.08, width = std::clamp(size / 200, 0.05, 0.4);
-  std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" + num(lo.x() - margin) + " " +
-                    num(lo.y() - margin) + " " + num(hi.x() - lo.x() + 2 * margin) + " " + num(hi.y() - lo.y() + 2 * margin) +
-                    "\" width=\"" + num(hi.x() - lo.x() + 2 * margin) + "mm\" height=\"" + num(hi.y() - lo.y() + 2 * margin) + "mm\">\n";
+  std::string out = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"" + num(lo.x() - margin) +
+                    " " + num(lo.y() - margin) + " " + num(hi.x() - lo.x() + 2 * margin) + " " +
+                    num(hi.y() - lo.y() + 2 * margin) + "\" width=\"" +
+                    num(hi.x() - lo.x() + 2 * margin) + "mm\" height=\"" +
+                    num(hi.y() - lo.y() + 2 * margin) + "mm\">\n";
   out += "<title>layer " + std::to_string(layer) + " (top view, mm)</title>\n";
-  out += "<rect x=\"" + num(lo.x() - margin) + "\" y=\"" + num(lo.y() - margin) + "\" width=\"" + num(hi.x() - lo.x() + 2 * margin) +
-         "\" height=\"" + num(hi.y() - lo.y() + 2 * margin) + "\" fill=\"#ffffff\"/>\n";
+  out += "<rect x=\"" + num(lo.x() - margin) + "\" y=\"" + num(lo.y() - margin) + "\" width=\"" +
+         num(hi.x() - lo.x() + 2 * margin) + "\" height=\"" + num(hi.y() - lo.y() + 2 * margin) +
+         "\" fill=\"#ffffff\"/>\n";
   for (const Run& r : runs) out += run_svg(r, width);
   const double mark_r = std::max(size / 60, 0.3);
   out += markers(marks.touches, "#ff8c00", mark_r);

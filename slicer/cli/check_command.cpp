@@ -25,8 +25,9 @@ struct CheckArgs {
 };
 
 int parse_layer_index(const std::string& text, std::size_t layers, const std::string& file) {
-  const std::string range = layers == 0 ? "none: " + file + " has no layers"
-                                        : "must be in [0, " + std::to_string(layers - 1) + "] (layers of " + file + ")";
+  const std::string range =
+      layers == 0 ? "none: " + file + " has no layers"
+                  : "must be in [0, " + std::to_string(layers - 1) + "] (layers of " + file + ")";
   std::size_t used = 0;
   int n = -1;
   try {
@@ -40,22 +41,26 @@ int parse_layer_index(const std::string& text, std::size_t layers, const std::st
   return n;
 }
 
-void write_svg(const post::ParsedGcode& parsed, const post::CheckReport& report, const CheckArgs& a) {
+void write_svg(const post::ParsedGcode& parsed, const post::CheckReport& report,
+               const CheckArgs& a) {
   const int n = parse_layer_index(a.svg_layer[0], parsed.program.layers.size(), a.file);
   post::LayerMarks marks;
   for (const auto& l : report.layers) {
     if (l.layer == n) marks = {l.crossings, l.touches};
   }
-  slicer::write_file_atomic(a.svg_layer[1], post::layer_svg(parsed.program, n, marks, a.arc_tolerance_mm));
+  slicer::write_file_atomic(a.svg_layer[1],
+                            post::layer_svg(parsed.program, n, marks, a.arc_tolerance_mm));
 }
 
 int run_check(const CheckArgs& a) {
   if (!(a.arc_tolerance_mm > 0.0 && a.arc_tolerance_mm <= 1.0)) {
-    throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) + ": must be in (0, 1] (mm)");
+    throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) +
+                     ": must be in (0, 1] (mm)");
   }
   const std::string text = slicer::read_file(a.file);
   std::unique_ptr<machines::MachineProfile> machine;
-  if (!a.machine.empty()) machine = std::make_unique<machines::MachineProfile>(machines::load_profile(a.machine));
+  if (!a.machine.empty())
+    machine = std::make_unique<machines::MachineProfile>(machines::load_profile(a.machine));
   const post::ParsedGcode parsed = post::parse_gcode(text);
   post::CheckOptions options;
   options.arc_tolerance_mm = a.arc_tolerance_mm;
@@ -70,14 +75,18 @@ int run_check(const CheckArgs& a) {
 }  // namespace
 
 void add_check_command(CLI::App& app, Action& action) {
-  CLI::App* sub = app.add_subcommand("check", "check any G-code: strands, self-crossings, touches, arcs, bounds per layer");
+  CLI::App* sub = app.add_subcommand(
+      "check", "check any G-code: strands, self-crossings, touches, arcs, bounds per layer");
   auto a = std::make_shared<CheckArgs>();
   sub->add_option("file", a->file, "G-code file to check")->required();
-  sub->add_option("--machine", a->machine, "machine profile name or .json path: also check build volume and arcs");
+  sub->add_option("--machine", a->machine,
+                  "machine profile name or .json path: also check build volume and arcs");
   sub->add_flag("--json", a->json, "print the report as JSON");
   sub->add_option("--svg-layer", a->svg_layer, "write a top view of layer N (0-based) to OUT.svg")
-      ->expected(2)->type_name("N OUT.svg");
-  sub->add_option("--arc-tolerance", a->arc_tolerance_mm, "chord error when arcs are flattened for the search [mm] (default 0.01)");
+      ->expected(2)
+      ->type_name("N OUT.svg");
+  sub->add_option("--arc-tolerance", a->arc_tolerance_mm,
+                  "chord error when arcs are flattened for the search [mm] (default 0.01)");
   sub->callback([&action, a] { action = [a] { return run_check(*a); }; });
 }
 

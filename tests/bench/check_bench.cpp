@@ -13,8 +13,8 @@
 namespace {
 
 constexpr int kLayers = 100;
-constexpr int kRows = 200;          // per layer
-constexpr int kPiecesPerRow = 49;   // G1 moves per row; + 1 arc = 50 moves per row
+constexpr int kRows = 200;         // per layer
+constexpr int kPiecesPerRow = 49;  // G1 moves per row; + 1 arc = 50 moves per row
 constexpr double kRowPitchMm = 0.4;
 constexpr double kRowLengthMm = 78.0;
 
@@ -40,7 +40,8 @@ std::string million_move_gcode() {
   for (int l = 0; l < kLayers; ++l) {
     const bool swap = l % 2 == 1;
     const double z = 0.4 * (l + 1);
-    out += ";LAYER_CHANGE\n;Z:" + std::to_string(z) + "\n;LAYER:" + std::to_string(l) + "\nG0 Z" + std::to_string(z) + "\n";
+    out += ";LAYER_CHANGE\n;Z:" + std::to_string(z) + "\n;LAYER:" + std::to_string(l) + "\nG0 Z" +
+           std::to_string(z) + "\n";
     move(out, "G0", x0, y0, swap);
     out += "\n";
     for (int r = 0; r < kRows; ++r) {
@@ -82,7 +83,8 @@ void BM_CheckMillionMoves(benchmark::State& state) {
     benchmark::DoNotOptimize(r.layers.data());
   }
   state.counters["moves"] = static_cast<double>(moves);
-  state.counters["moves_per_s"] = benchmark::Counter(static_cast<double>(moves), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["moves_per_s"] =
+      benchmark::Counter(static_cast<double>(moves), benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_CheckMillionMoves)->Unit(benchmark::kMillisecond)->Iterations(3);
 
@@ -91,7 +93,8 @@ void BM_ParseMillionMoves(benchmark::State& state) {
     const auto p = strand::post::parse_gcode(text());
     benchmark::DoNotOptimize(p.program.moves.data());
   }
-  state.counters["lines_per_s"] = benchmark::Counter(1e6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["lines_per_s"] =
+      benchmark::Counter(1e6, benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_ParseMillionMoves)->Unit(benchmark::kMillisecond)->Iterations(3);
 

@@ -30,7 +30,8 @@ TEST(Check, CrossingIsAFailureWithItsPointAndLines) {
   EXPECT_EQ(r.line_of(c.move_a), 3);
   EXPECT_EQ(r.line_of(c.move_b), 5);
   EXPECT_FALSE(r.ok());
-  EXPECT_NE(to_text(r).find("at (5.000, 5.000) mm: lines 3 and 5"), std::string::npos) << to_text(r);
+  EXPECT_NE(to_text(r).find("at (5.000, 5.000) mm: lines 3 and 5"), std::string::npos)
+      << to_text(r);
 }
 
 TEST(Check, TouchIsReportedButPasses) {
@@ -57,7 +58,8 @@ TEST(Check, MoveOutsideTheDeltaRadiusIsFound) {
   const auto r = check("G0 X0 Y0 Z0.5\nG1 X50 Y0\nG1 X120 Y0\n", &delta());
   ASSERT_EQ(r.outside_volume.size(), 1u);
   EXPECT_EQ(r.outside_volume[0].line, 3);
-  EXPECT_NE(r.outside_volume[0].what.find("radius 120 mm"), std::string::npos) << r.outside_volume[0].what;
+  EXPECT_NE(r.outside_volume[0].what.find("radius 120 mm"), std::string::npos)
+      << r.outside_volume[0].what;
   EXPECT_FALSE(r.ok());
 }
 
@@ -89,13 +91,15 @@ TEST(Check, InchUnitsFail) {
 }
 
 TEST(Check, TextMessagesAndBareAxisWordsAreNotMalformed) {
-  EXPECT_TRUE(check("M117 Open the air valve now\nG28 X Y\nG0 X0 Y0 Z1\nG1 X5\n").parse_issues.empty());
+  EXPECT_TRUE(
+      check("M117 Open the air valve now\nG28 X Y\nG0 X0 Y0 Z1\nG1 X5\n").parse_issues.empty());
   EXPECT_FALSE(check("G1 X1.0 Yabc\n").parse_issues.empty());
 }
 
 TEST(Check, CuraFileWithAbsoluteEIsReadLayerByLayer) {
   const std::string cura =
-      ";FLAVOR:Marlin\n;LAYER_COUNT:2\nM82\nG92 E0\n;LAYER:0\nG0 F3000 X10 Y10 Z0.3\n;TYPE:WALL-OUTER\n"
+      ";FLAVOR:Marlin\n;LAYER_COUNT:2\nM82\nG92 E0\n;LAYER:0\nG0 F3000 X10 Y10 "
+      "Z0.3\n;TYPE:WALL-OUTER\n"
       "G1 F1200 X20 Y10 E0.5\nG1 X20 Y20 E1.0\nG1 X10 Y20 E1.5\nG1 X10 Y10 E2.0\nG1 F2400 E1.2\n"
       "G0 X30 Y30\nG1 F2400 E2.0\n;TYPE:FILL\nG1 X40 Y30 E2.5\n"
       ";LAYER:1\nG0 X10 Y10 Z0.5\nG1 X20 Y10 E3.0\nG1 X10 Y12 E3.5\n";
@@ -103,7 +107,7 @@ TEST(Check, CuraFileWithAbsoluteEIsReadLayerByLayer) {
   ASSERT_EQ(r.layers.size(), 2u);
   EXPECT_NEAR(r.layers[0].z_mm, 0.3, 1e-12);
   EXPECT_NEAR(r.layers[1].z_mm, 0.5, 1e-12);
-  EXPECT_EQ(r.layers[0].strands, 2);       // the wall loop, then the fill line after a travel
+  EXPECT_EQ(r.layers[0].strands, 2);          // the wall loop, then the fill line after a travel
   EXPECT_EQ(r.layers[0].touches.size(), 1u);  // the loop closes on its start
   EXPECT_EQ(r.layers[1].strands, 1);
   EXPECT_TRUE(r.ok()) << to_text(r);
@@ -111,8 +115,9 @@ TEST(Check, CuraFileWithAbsoluteEIsReadLayerByLayer) {
 }
 
 TEST(Check, ThesisScaffoldPassesWithOneStrandPerLayer) {
-  const auto values = slicer::resolve_params(
-      patterns::scaffold_table(), {{"nozzle", 0.84}, {"gap", 1.6}, {"size", "36x36"}, {"height", 13}});
+  const auto values =
+      slicer::resolve_params(patterns::scaffold_table(),
+                             {{"nozzle", 0.84}, {"gap", 1.6}, {"size", "36x36"}, {"height", 13}});
   const auto t = patterns::scaffold_from_values(values);
   const auto out = produce(t, delta(), plan_options_from(t, 0.01), "s.gcode");
   const auto r = check(out.gcode, &delta());
@@ -122,7 +127,9 @@ TEST(Check, ThesisScaffoldPassesWithOneStrandPerLayer) {
 }
 
 TEST(Check, ContactsBeforeTheFirstLayerGetTheirOwnRow) {
-  const auto r = check("G0 X0 Y0 Z0.3\nG1 X10 Y10\nG1 X10 Y0\nG1 X0 Y10\n;LAYER:0\nG0 X0 Y0 Z0.5\nG1 X10\nG0 X5 Y5\nG1 X5 Y0\n");
+  const auto r = check(
+      "G0 X0 Y0 Z0.3\nG1 X10 Y10\nG1 X10 Y0\nG1 X0 Y10\n;LAYER:0\nG0 X0 Y0 Z0.5\nG1 X10\nG0 X5 "
+      "Y5\nG1 X5 Y0\n");
   ASSERT_EQ(r.layers.size(), 2u);
   EXPECT_EQ(r.layers[0].layer, -1);
   EXPECT_EQ(r.layers[0].crossings.size(), 1u);
