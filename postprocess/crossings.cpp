@@ -1,9 +1,11 @@
-// Per-layer contact search on a uniform grid sized to the segment count.
+// Per-layer contact search on a uniform grid: each segment is rasterised into the cells its
+// touch-inflated body crosses (not its bounding box), so the work is linear in the total
+// length over the cell size plus the pairs that really share a cell.
 #include "postprocess/crossings.h"
 
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
+#include <cstdint>
 
 #include "postprocess/arc_segmentation.h"
 
@@ -65,55 +67,126 @@ bool adjacent(const Seg& s, const Seg& t) {
   return s.strand == t.strand && std::abs(s.index - t.index) == 1;
 }
 
-void check_layer(const LayerSegs& L, double touch, ContactReport& out) {
-  const auto& segs = L.segs;
-  if (segs.size() < 2) return;
+// A grid over one layer's bounding box, cell size about one mean segment length.
+struct Grid {
+  Vec2 lo;
+  double cell;
+  std::int64_t nx;
+  std::int64_t col(double x) const {
+    return static_cast<std::int64_t>(std::floor((x - lo.x()) / cell));
+  }
+  std::int64_t row(double y) const {
+    return static_cast<std::int64_t>(std::floor((y - lo.y()) / cell));
+  }
+  std::uint64_t key(std::int64_t cx, std::int64_t cy) const {
+    return static_cast<std::uint64_t>((cy + 1) * (nx + 3) + (cx + 1));
+  }
+};
+
+Grid make_grid(const std::vector<Seg>& segs) {
   Vec2 lo = segs[0].a, hi = segs[0].a;
   double total = 0;
+  std::vector<double> lengths;
+  lengths.reserve(segs.size());
   for (const auto& s : segs) {
     lo = lo.cwiseMin(s.a).cwiseMin(s.b);
     hi = hi.cwiseMax(s.a).cwiseMax(s.b);
-    total += (s.b - s.a).norm();
+    lengths.push_back((s.b - s.a).norm());
+    total += lengths.back();
   }
+  const auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
+  std::nth_element(lengths.begin(), mid, lengths.end());
   const double n = static_cast<double>(segs.size());
   const Vec2 ext = (hi - lo).cwiseMax(Vec2(1e-9, 1e-9));
-  // Cells about one mean segment long, but never more cells than ~4 per segment.
-  const double cell = std::max({total / n, std::sqrt(ext.x() * ext.y() / (4 * n)), 1e-6});
-  const long nx = static_cast<long>(ext.x() / cell) + 1;
-  std::unordered_map<long long, std::vector<std::uint32_t>> grid;
-  grid.reserve(segs.size() * 2);
-  auto key = [nx](long cx, long cy) { return static_cast<long long>(cy) * (nx + 1) + cx; };
-  auto cell_of = [&](double v, double origin) { return static_cast<long>(std::floor((v - origin) / cell)); };
-  for (std::uint32_t k = 0; k < segs.size(); ++k) {
-    const auto& s = segs[k];
-    const long x0 = cell_of(std::min(s.a.x(), s.b.x()) - touch, lo.x()), x1 = cell_of(std::max(s.a.x(), s.b.x()) + touch, lo.x());
-    const long y0 = cell_of(std::min(s.a.y(), s.b.y()) - touch, lo.y()), y1 = cell_of(std::max(s.a.y(), s.b.y()) + touch, lo.y());
-    for (long cy = y0; cy <= y1; ++cy) {
-      for (long cx = x0; cx <= x1; ++cx) grid[key(cx, cy)].push_back(k);
-    }
+  // Cells about one median segment long (a few long lines do not inflate the cells of a
+  // dense node), but at most ~8n cells crossed in total, at most ~4n cells in the box, and
+  // at most 2^20 cells along an axis (keys fit 64 bits for any coordinates).
+  const double cell = std::max({*mid, total / (8 * n), std::sqrt(ext.x() * ext.y() / (4 * n)),
+                                ext.maxCoeff() / double(1 << 20), 1e-6});
+  return {lo, cell, static_cast<std::int64_t>(ext.x() / cell) + 1};
+}
+
+// Appends (cell key, segment) for every cell the segment, inflated by `pad`, may touch:
+// column by column, the y-range the segment covers inside that column's slab.
+void rasterise(const Grid& g, const Seg& s, std::uint32_t id, double pad,
+               std::vector<std::pair<std::uint64_t, std::uint32_t>>& out) {
+  const Vec2 p = s.a.x() <= s.b.x() ? s.a : s.b;
+  const Vec2 q = s.a.x() <= s.b.x() ? s.b : s.a;
+  const double dx = q.x() - p.x();
+  const std::int64_t c0 = g.col(p.x() - pad), c1 = g.col(q.x() + pad);
+  for (std::int64_t cx = c0; cx <= c1; ++cx) {
+    const double x_lo = std::max(p.x(), g.lo.x() + static_cast<double>(cx) * g.cell - pad);
+    const double x_hi = std::min(q.x(), g.lo.x() + static_cast<double>(cx + 1) * g.cell + pad);
+    auto y_at = [&](double x) {
+      return dx <= 0 ? p.y() : p.y() + (q.y() - p.y()) * (x - p.x()) / dx;
+    };
+    const double y_lo = dx <= 0 ? std::min(p.y(), q.y()) : std::min(y_at(x_lo), y_at(x_hi));
+    const double y_hi = dx <= 0 ? std::max(p.y(), q.y()) : std::max(y_at(x_lo), y_at(x_hi));
+    for (std::int64_t cy = g.row(y_lo - pad); cy <= g.row(y_hi + pad); ++cy)
+      out.emplace_back(g.key(cx, cy), id);
   }
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-  for (const auto& [k, ids] : grid) {
-    for (std::size_t i = 0; i < ids.size(); ++i) {
-      for (std::size_t j = i + 1; j < ids.size(); ++j) pairs.emplace_back(std::min(ids[i], ids[j]), std::max(ids[i], ids[j]));
-    }
+}
+
+struct Found {
+  std::uint32_t i, j;
+  slicer::Contact kind;
+  bool operator<(const Found& o) const { return std::tie(i, j) < std::tie(o.i, o.j); }
+  bool operator==(const Found& o) const { return i == o.i && j == o.j; }
+};
+
+// Classifies one candidate pair; pairs sharing several cells are deduplicated later.
+void test_pair(const std::vector<Seg>& segs, std::uint32_t i, std::uint32_t j, double touch,
+               std::vector<Found>& found) {
+  const Seg& s = segs[i];
+  const Seg& t = segs[j];
+  if (adjacent(s, t)) return;
+  // Cheap reject: boxes apart by more than `touch` (most pairs sharing a cell).
+  if (std::max(s.a.x(), s.b.x()) + touch < std::min(t.a.x(), t.b.x()) ||
+      std::max(t.a.x(), t.b.x()) + touch < std::min(s.a.x(), s.b.x()) ||
+      std::max(s.a.y(), s.b.y()) + touch < std::min(t.a.y(), t.b.y()) ||
+      std::max(t.a.y(), t.b.y()) + touch < std::min(s.a.y(), s.b.y())) {
+    return;
   }
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  for (const auto& [i, j] : pairs) {
-    const Seg& s = segs[i];
-    const Seg& t = segs[j];
-    if (adjacent(s, t)) continue;
-    const auto c = slicer::segment_contact(s.a, s.b, t.a, t.b, touch);
-    if (c == slicer::Contact::Crossing) {
-      out.crossings.push_back({L.layer, slicer::crossing_point(s.a, s.b, t.a, t.b), s.move, t.move});
-    } else if (c == slicer::Contact::Touch) {
-      // A joint between consecutive moves split into chords is not a touch.
-      if (s.move == t.move) continue;
-      Vec2 at = (s.a - t.a).norm() <= touch || (s.a - t.b).norm() <= touch ? s.a : s.b;
-      if (slicer::point_segment_distance(t.a, s.a, s.b) <= touch) at = t.a;
-      else if (slicer::point_segment_distance(t.b, s.a, s.b) <= touch) at = t.b;
-      out.touches.push_back({L.layer, at, s.move, t.move});
+  const auto c = slicer::segment_contact(s.a, s.b, t.a, t.b, touch);
+  // A joint between consecutive moves split into chords is not a touch.
+  if (c == slicer::Contact::None || (c == slicer::Contact::Touch && s.move == t.move)) return;
+  found.push_back({std::min(i, j), std::max(i, j), c});
+}
+
+Vec2 touch_point(const Seg& s, const Seg& t, double touch) {
+  if (slicer::point_segment_distance(t.a, s.a, s.b) <= touch) return t.a;
+  if (slicer::point_segment_distance(t.b, s.a, s.b) <= touch) return t.b;
+  return slicer::point_segment_distance(s.a, t.a, t.b) <= touch ? s.a : s.b;
+}
+
+void check_layer(const LayerSegs& L, double touch, ContactReport& out) {
+  const auto& segs = L.segs;
+  if (segs.size() < 2) return;
+  const Grid g = make_grid(segs);
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells;
+  cells.reserve(segs.size() * 3);
+  for (std::uint32_t k = 0; k < segs.size(); ++k) rasterise(g, segs[k], k, touch, cells);
+  std::sort(cells.begin(), cells.end());
+  std::vector<Found> found;
+  for (std::size_t b = 0; b < cells.size();) {
+    std::size_t e = b + 1;
+    while (e < cells.size() && cells[e].first == cells[b].first) ++e;
+    for (std::size_t i = b; i < e; ++i) {
+      for (std::size_t j = i + 1; j < e; ++j)
+        test_pair(segs, cells[i].second, cells[j].second, touch, found);
+    }
+    b = e;
+  }
+  std::sort(found.begin(), found.end());
+  found.erase(std::unique(found.begin(), found.end()), found.end());
+  for (const Found& f : found) {
+    const Seg& s = segs[f.i];
+    const Seg& t = segs[f.j];
+    if (f.kind == slicer::Contact::Crossing) {
+      out.crossings.push_back(
+          {L.layer, slicer::crossing_point(s.a, s.b, t.a, t.b), s.move, t.move});
+    } else {
+      out.touches.push_back({L.layer, touch_point(s, t, touch), s.move, t.move});
     }
   }
 }
@@ -124,10 +197,11 @@ ContactReport find_contacts(const slicer::MotionProgram& p, double tol, double t
   ContactReport out;
   for (const auto& layer : collect(p, tol)) check_layer(layer, touch, out);
   auto by_move = [](const Contact& a, const Contact& b) {
-    return std::tie(a.layer, a.move_a, a.move_b) < std::tie(b.layer, b.move_a, b.move_b);
+    return std::tie(a.layer, a.move_a, a.move_b, a.at_mm.x(), a.at_mm.y()) <
+           std::tie(b.layer, b.move_a, b.move_b, b.at_mm.x(), b.at_mm.y());
   };
-  std::sort(out.crossings.begin(), out.crossings.end(), by_move);
-  std::sort(out.touches.begin(), out.touches.end(), by_move);
+  std::stable_sort(out.crossings.begin(), out.crossings.end(), by_move);
+  std::stable_sort(out.touches.begin(), out.touches.end(), by_move);
   return out;
 }
 

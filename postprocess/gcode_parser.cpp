@@ -1,6 +1,7 @@
 // Single-pass G-code reader with std::from_chars; linear in the file size.
 #include "postprocess/gcode_parser.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -29,34 +30,49 @@ struct Words {
   }
 };
 
-// Splits "G1 X1.5 Y-2 E0.1" into letter/number words; stops at ';' or '('.
+bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
+
+// M-codes whose argument is free text ("M117 Open the valve"), not address words.
+bool takes_text(const Words& w) {
+  if (w.count != 1 || w.letter[0] != 'M') return false;
+  const double m = w.value[0];
+  return m == 117 || m == 118 || m == 23 || m == 28 || m == 30 || m == 32;
+}
+
+// Splits "G1 X1.5 Y-2 E0.1" into letter/number words; stops at ';' or '('. A word whose
+// number is nan/inf, or a G word followed by something that is not a number, sets
+// bad_number; a bare letter ("G28 X Y") is a flag word and is skipped.
 Words split_words(std::string_view code) {
   Words w;
   std::size_t i = 0;
   while (i < code.size() && w.count < 16) {
     const char c = code[i];
     if (c == ';' || c == '(') break;
-    if ((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z')) {
-      std::size_t j = i + 1;
-      while (j < code.size() && code[j] == ' ') ++j;
-      std::size_t k = j;
-      if (k < code.size() && code[k] == '+') ++k;
-      double v = 0.0;
-      auto res = std::from_chars(code.data() + k, code.data() + code.size(), v);
-      if (res.ec != std::errc() || !std::isfinite(v)) {
-        w.bad_number = true;
-        std::size_t e = j;
-        while (e < code.size() && code[e] != ' ' && code[e] != ';') ++e;
-        i = e;
-        continue;
-      }
-      w.letter[w.count] = static_cast<char>(c & ~0x20);
-      w.value[w.count] = v;
-      ++w.count;
+    if (!is_letter(c)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i + 1;
+    while (j < code.size() && code[j] == ' ') ++j;
+    const std::size_t k = j < code.size() && code[j] == '+' ? j + 1 : j;
+    double v = 0.0;
+    const auto res = std::from_chars(code.data() + k, code.data() + code.size(), v);
+    if (res.ec != std::errc()) {
+      const bool bare = k >= code.size() || (is_letter(code[k]) && k > i + 1) || code[k] == ';';
+      if (!bare && w.count > 0 && w.letter[0] == 'G') w.bad_number = true;
+      i = bare ? i + 1 : code.find(' ', k);  // a malformed word is skipped whole
+      continue;
+    }
+    if (!std::isfinite(v)) {  // nan, inf: never used as a coordinate
+      w.bad_number = true;
       i = static_cast<std::size_t>(res.ptr - code.data());
       continue;
     }
-    ++i;
+    w.letter[w.count] = static_cast<char>(c & ~0x20);
+    w.value[w.count] = v;
+    ++w.count;
+    i = static_cast<std::size_t>(res.ptr - code.data());
+    if (takes_text(w)) break;
   }
   return w;
 }
@@ -77,6 +93,15 @@ Feature feature_from_comment(std::string_view name, Feature fallback) {
   return fallback;
 }
 
+// Another slicer's ;TYPE: role (Cura "WALL-OUTER", "FILL"; PrusaSlicer "Perimeter",
+// "Solid infill") as the nearest feature, so previews colour walls and fills apart.
+Feature feature_from_role(std::string_view role, Feature fallback) {
+  auto has = [role](std::string_view w) { return role.find(w) != std::string_view::npos; };
+  if (has("WALL") || has("erimeter")) return Feature::Wall;
+  if (has("FILL") || has("SKIN") || has("nfill") || has("Bridge")) return Feature::Infill;
+  return fallback;
+}
+
 class Reader {
  public:
   explicit Reader(std::string_view text) : text_(text) {
@@ -86,6 +111,10 @@ class Reader {
   }
 
   ParsedGcode run() {
+    // One move per line at most: reserving avoids re-copying a million moves while growing.
+    const auto lines = static_cast<std::size_t>(std::count(text_.begin(), text_.end(), '\n')) + 1;
+    out_.program.moves.reserve(lines);
+    out_.move_lines.reserve(lines);
     std::size_t pos = 0;
     int line_no = 0;
     while (pos <= text_.size()) {
@@ -140,10 +169,13 @@ class Reader {
       double z = 0;
       std::from_chars(c.data() + 2, c.data() + c.size(), z);
       out_.program.layers.back().z_mm = z;
+      layer_z_known_ = true;
     } else if (starts_with(c, "HEIGHT:") && !out_.program.layers.empty()) {
       double h = 0;
       std::from_chars(c.data() + 7, c.data() + c.size(), h);
       out_.program.layers.back().height_mm = h;
+    } else if (starts_with(c, "TYPE:")) {
+      feature_ = feature_from_role(c.substr(5), feature_);
     } else if (starts_with(c, "FEATURE:")) {
       feature_ = feature_from_comment(trim(c.substr(8)), feature_);
     } else if (starts_with(c, "WIDTH:")) {
@@ -153,6 +185,7 @@ class Reader {
 
   void new_layer(std::optional<double> z) {
     out_.program.layers.push_back({z.value_or(pos_.z()), 0.0});
+    layer_z_known_ = z.has_value();
     layer_ = static_cast<int>(out_.program.layers.size()) - 1;
     marker_pending_ = true;
   }
@@ -165,7 +198,7 @@ class Reader {
   void g_code(int code, const Words& w, int n) {
     switch (code) {
       case 0: case 1: case 2: case 3: motion(code, w, n); break;
-      case 4: dwell(w); break;
+      case 4: dwell(w, n); break;
       case 20:
         scale_ = slicer::kMmPerInch;
         if (!out_.inches) out_.issues.push_back({n, "inch units (G20): coordinates converted to mm"});
@@ -184,7 +217,7 @@ class Reader {
     }
   }
 
-  void dwell(const Words& w) {
+  void dwell(const Words& w, int n) {
     Move mv;
     mv.kind = MoveKind::Dwell;
     mv.end_mm = pos_;
@@ -192,6 +225,7 @@ class Reader {
     if (auto p = w.get('P')) mv.dwell_s = *p / 1000.0;
     mv.layer = layer_;
     out_.program.moves.push_back(mv);
+    out_.move_lines.push_back(n);  // one line per move, dwells included
   }
 
   void motion(int code, const Words& w, int n) {
@@ -222,8 +256,12 @@ class Reader {
         (layer_ < 0 || std::abs(target.z() - out_.program.layers.back().z_mm) > 1e-6)) {
       new_layer(target.z());
     }
+    if (mv.kind == MoveKind::Deposit && layer_ >= 0 && !layer_z_known_) {
+      out_.program.layers.back().z_mm = target.z();  // Cura: no ;Z:, the z comes after ;LAYER:
+      layer_z_known_ = true;
+    }
     mv.layer = layer_;
-    out_.program.moves.push_back(mv);
+    out_.program.moves.push_back(std::move(mv));
     out_.move_lines.push_back(n);
     if (out_.program.moves.size() == 1) out_.program.start_mm = pos_;
     pos_ = target;
@@ -267,6 +305,7 @@ class Reader {
   bool has_markers_ = false;
   bool has_e_ = false;
   bool marker_pending_ = false;
+  bool layer_z_known_ = false;  // the current layer's z came from ;Z: or a deposit
   int layer_ = -1;
   Feature feature_ = Feature::Infill;
 };
