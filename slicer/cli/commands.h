@@ -13,5 +13,6 @@ using Action = std::function<int()>;
 void add_generator_commands(CLI::App& app, Action& action);
 void add_job_command(CLI::App& app, Action& action);
 void add_machines_command(CLI::App& app, Action& action);
+void add_flow_command(CLI::App& app, Action& action);
 
 }  // namespace strand::cli

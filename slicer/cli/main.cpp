@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   strand::cli::add_generator_commands(app, action);
   strand::cli::add_job_command(app, action);
   strand::cli::add_machines_command(app, action);
+  strand::cli::add_flow_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
