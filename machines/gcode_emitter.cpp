@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "machines/gcode_format.h"
+#include "machines/move_split.h"
 #include "slicer/units.h"
 
 namespace strand::machines {
@@ -28,6 +29,10 @@ std::string expand(const std::string& line, const MachineProfile& m) {
   return s;
 }
 
+// Chord error used only if an arc reaches the emitter of a machine without G2/G3 (the
+// planner normally segments them with the user's tolerance), mm.
+constexpr double kFallbackChordMm = 0.01;
+
 // Emission state: what the firmware has been told so far.
 class Writer {
  public:
@@ -38,28 +43,71 @@ class Writer {
   }
 
   std::string run(const slicer::MotionProgram& p) {
-    for (const auto& h : o_.header) out_ += h.empty() ? ";\n" : "; " + h + "\n";
+    if (o_.viewer_e) {
+      out_ += comment("PREVIEW ONLY - NOT FOR PRINTING: E words are computed ink volume (mm3, relative) for viewers");
+    }
+    for (const auto& h : o_.header) out_ += h.empty() ? comment("") : comment(h);
     for (const auto& line : m_.start_gcode) out_ += expand(line, m_) + "\n";
     preamble();
     at_ = p.start_mm;
     for (const auto& mv : p.moves) write(mv, p);
     close_flow();
     out_ += ";TYPE:Custom\n";
+    if (o_.viewer_e) out_ += comment("PREVIEW ONLY - NOT FOR PRINTING");
     for (const auto& line : m_.end_gcode) out_ += expand(line, m_) + "\n";
     return out_;
   }
 
  private:
+  // "; text" or, on GRBL, "(text)" (GRBL comments may not nest parentheses).
+  std::string comment(std::string text) const {
+    if (m_.firmware != Firmware::Grbl) return text.empty() ? ";\n" : "; " + text + "\n";
+    for (char& c : text) {
+      if (c == '(') c = '[';
+      if (c == ')') c = ']';
+    }
+    return "(" + text + ")\n";
+  }
+
+  std::string code(const std::string& words, const std::string& note) const {
+    if (note.empty()) return words + "\n";
+    return m_.firmware == Firmware::Grbl ? words + " (" + note + ")\n" : words + " ; " + note + "\n";
+  }
+
+  // Waits until queued moves finish (before commands that act at once, e.g. M42/M280/M106).
+  std::string sync() const { return m_.firmware == Firmware::Grbl ? "G4 P0\n" : "M400\n"; }
+
   void preamble() {
-    out_ += "G21 ; millimetres\nG90 ; absolute XYZ\n";
+    out_ += code("G21", "millimetres") + code("G90", "absolute XYZ");
     if (!e_words_) return;
     // Marlin: G90 also resets the E mode, so the E mode must come after it.
-    out_ += relative_e_ ? "M83 ; relative E\n" : "M82 ; absolute E\n";
+    out_ += relative_e_ ? code("M83", "relative E") : code("M82", "absolute E");
     out_ += "G92 E0\n";
-    if (m_.deposition.model == DepositionModel::EVolumetric && m_.deposition.prime_e > 0 &&
-        !o_.viewer_e) {
-      out_ += "G1 E" + fmt_e(m_.deposition.prime_e) + " F200 ; prime\nG92 E0\n";
+    if (m_.deposition.model != DepositionModel::EVolumetric || o_.viewer_e) return;
+    allow_cold_extrusion();
+    if (m_.deposition.prime_e > 0) {
+      e_only(m_.deposition.prime_e, "prime");
+      if (!relative_e_) e_ = 0.0;
+      out_ += "G92 E0\n";
     }
+  }
+
+  // Paste is extruded cold: Marlin refuses E moves below EXTRUDE_MINTEMP without M302 S0,
+  // RepRapFirmware without M302 P1 (Klipper: min_extrude_temp in its config).
+  void allow_cold_extrusion() {
+    for (const auto& l : m_.start_gcode) {
+      if (l.starts_with("M302")) return;
+    }
+    if (m_.firmware == Firmware::Marlin) out_ += code("M302 S0", "cold paste: allow E without heat");
+    if (m_.firmware == Firmware::RepRap) out_ += code("M302 P1", "cold paste: allow E without heat");
+  }
+
+  // E-only move, split so no single move exceeds EXTRUDE_MAXLENGTH.
+  void e_only(double de, const std::string& note) {
+    const double max = m_.deposition.extrude_max_length;
+    const int n = std::max(1, static_cast<int>(std::ceil(std::abs(de) / max - 1e-9)));
+    for (int i = 0; i < n; ++i) out_ += code("G1 E" + e_step(de / n) + " F200", note);
+    feed_ = "200";
   }
 
   void write(const Move& mv, const slicer::MotionProgram& p) {
@@ -88,13 +136,45 @@ class Writer {
     }
   }
 
+  // Moves this deposit is written as: arcs become chords where the firmware has no G2/G3,
+  // and E-driven moves are cut below EXTRUDE_MAXLENGTH.
+  std::vector<Move> pieces(const Move& mv) const {
+    int n = 1;
+    if (mv.is_arc && !m_.arcs) {
+      const double r = (at_.head<2>() - mv.center_mm).norm();
+      const double sweep = std::abs(slicer::arc_sweep(mv.center_mm, at_.head<2>(), mv.end_mm.head<2>(), mv.ccw));
+      const double tol = std::min(kFallbackChordMm, r);
+      n = std::max(1, static_cast<int>(std::ceil(sweep / (2 * std::acos(1 - tol / r)))));
+    }
+    if (e_words_ && !o_.viewer_e) {
+      const double e = mv.volume_mm3 / m_.deposition.mm3_per_e;
+      n = std::max(n, static_cast<int>(std::ceil(e / m_.deposition.extrude_max_length - 1e-9)));
+    }
+    if (n == 1) return {mv};
+    std::vector<double> cuts;
+    for (int i = 1; i < n; ++i) cuts.push_back(static_cast<double>(i) / n);
+    auto out = split_move(at_, mv, cuts);
+    if (mv.is_arc && !m_.arcs) {
+      for (auto& piece : out) piece.is_arc = false;
+    }
+    return out;
+  }
+
   void travel(const Move& mv) {
     close_flow();
     out_ += "G0" + axes(mv) + feed(mv.feed_mm_per_min) + "\n";
   }
 
-  void deposit(const Move& mv) {
-    open_flow();
+  void deposit(const Move& whole) {
+    if (whole.coast) {
+      close_flow();
+    } else {
+      open_flow();
+    }
+    for (const Move& mv : pieces(whole)) deposit_piece(mv);
+  }
+
+  void deposit_piece(const Move& mv) {
     if (!feature_written_ || mv.feature != feature_) {
       out_ += ";TYPE:" + viewer_role(mv.feature) + "\n;FEATURE:" + to_string(mv.feature) + "\n";
       feature_ = mv.feature;
@@ -145,11 +225,11 @@ class Writer {
     if (flowing_) return;
     flowing_ = true;
     if (retracted_) {
-      out_ += "G1 E" + e_step(m_.deposition.retract_e) + " ; undo suck-back\n";
+      e_only(m_.deposition.retract_e, "undo suck-back");
       retracted_ = false;
     }
     if (m_.deposition.model != DepositionModel::Valve) return;
-    out_ += "M400\n";  // M42/M106/M280 act at once: wait for queued moves first
+    out_ += sync();  // M42/M106/M280 act at once: wait for queued moves first
     for (const auto& l : m_.deposition.on_gcode) out_ += l + "\n";
     if (m_.deposition.lead_s > 0) dwell(m_.deposition.lead_s);
   }
@@ -159,11 +239,11 @@ class Writer {
     flowing_ = false;
     if (m_.deposition.model == DepositionModel::EVolumetric && m_.deposition.retract_e > 0 &&
         !o_.viewer_e) {
-      out_ += "G1 E" + e_step(-m_.deposition.retract_e) + " ; suck-back\n";
+      e_only(-m_.deposition.retract_e, "suck-back");
       retracted_ = true;
     }
     if (m_.deposition.model != DepositionModel::Valve) return;
-    out_ += "M400\n";
+    out_ += sync();
     for (const auto& l : m_.deposition.off_gcode) out_ += l + "\n";
   }
 

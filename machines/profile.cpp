@@ -75,6 +75,7 @@ Deposition read_deposition(const nlohmann::json& d, const std::string& origin,
   out.prime_e = d.value("prime_e", 0.0);
   out.retract_e = d.value("retract_e", 0.0);
   out.reservoir_ml = d.value("reservoir_ml", 30.0);
+  out.extrude_max_length = d.value("extrude_max_length", out.extrude_max_length);
   if (d.contains("filament_diameter_mm")) {
     const double fd = d.at("filament_diameter_mm").get<double>();
     out.mm3_per_e = slicer::kPi * fd * fd / 4.0;
@@ -135,6 +136,15 @@ MachineProfile profile_from_json(const nlohmann::json& j, const std::string& ori
   p.limits.z_feed_mm_per_min = lim.value("z_feed_mm_per_min", p.limits.z_feed_mm_per_min);
   p.limits.acceleration_mm_per_s2 = lim.value("acceleration_mm_per_s2", p.limits.acceleration_mm_per_s2);
   p.limits.junction_deviation_mm = lim.value("junction_deviation_mm", p.limits.junction_deviation_mm);
+  p.limits.max_volumetric_flow_mm3_per_s =
+      lim.value("max_volumetric_flow_mm3_per_s", p.limits.max_volumetric_flow_mm3_per_s);
+  const auto factors = j.value("speed_factors", nlohmann::json::object());
+  for (const auto& [k, v] : factors.items()) {
+    p.speed_factors[slicer::feature_from_string(k)] = v.get<double>();
+  }
+  if (p.firmware == Firmware::Grbl && p.deposition.model == DepositionModel::EVolumetric) {
+    problems.push_back(origin + ": deposition.model = \"e-volumetric\": GRBL has no E axis (use valve or none)");
+  }
   p.travel_lift_mm = j.value("travel_lift_mm", p.travel_lift_mm);
   p.start_gcode = lines(j, "start_gcode");
   p.end_gcode = lines(j, "end_gcode");

@@ -2,12 +2,14 @@
 // templates, loaded from JSON (shipped ones by name, user ones by path).
 #pragma once
 
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "machines/plotter_profile.h"
 #include "slicer/geometry.h"
+#include "slicer/toolpath.h"
 
 namespace strand::machines {
 
@@ -49,6 +51,9 @@ struct Deposition {
   double prime_e = 0.0;           // e-volumetric: E pushed once at start
   double retract_e = 0.0;         // e-volumetric: suck-back at strand ends (0 = none)
   double reservoir_ml = 30.0;     // syringe or tank volume, for refill estimates
+  // e-volumetric: Marlin's EXTRUDE_MAXLENGTH; a move pushing more E units than this is
+  // silently dropped by the firmware, so longer moves are split.
+  double extrude_max_length = 200.0;
 };
 
 struct Limits {
@@ -57,6 +62,9 @@ struct Limits {
   double z_feed_mm_per_min = 600.0;
   double acceleration_mm_per_s2 = 500.0;
   double junction_deviation_mm = 0.05;
+  // e-volumetric: highest ink flow the extruder sustains; deposit feeds are capped so that
+  // feed x bead area stays below it. 0 = no cap.
+  double max_volumetric_flow_mm3_per_s = 0.0;
 };
 
 struct MachineProfile {
@@ -67,6 +75,9 @@ struct MachineProfile {
   bool arcs = false;                 // firmware accepts G2/G3
   Deposition deposition;
   Limits limits;
+  // Per-feature deposit speed factors (node 1.1 = 10 % faster); a job's
+  // "<feature>-speed-factor" overrides the profile's value for that feature.
+  std::map<slicer::Feature, double> speed_factors;
   double travel_lift_mm = 1.0;       // z hop for travels between strands
   std::vector<std::string> start_gcode;  // templates; {lead_s}, {lead_ms}, {message}
   std::vector<std::string> end_gcode;

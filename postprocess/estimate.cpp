@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "postprocess/motion_time.h"
 #include "slicer/units.h"
 
 namespace strand::post {
@@ -59,6 +60,20 @@ Estimate estimate(const slicer::MotionProgram& p) {
       }
     }
     at = mv.end_mm;
+  }
+  return e;
+}
+
+Estimate estimate(const slicer::MotionProgram& p, const machines::MachineProfile& m) {
+  Estimate e = estimate(p);
+  const TimeOptions o = time_options_for(m);
+  const MotionTime t = trapezoid_time(p, o);
+  e.time_trapezoid_s = t.total_s;
+  for (std::size_t i = 0; i < e.layers.size(); ++i) {
+    auto& l = e.layers[i];
+    l.time_trapezoid_s = t.layer_s[i];
+    l.time_naive_s += l.strands * o.strand_start_dwell_s;
+    e.time_naive_s += l.strands * o.strand_start_dwell_s;
   }
   return e;
 }

@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "machines/profile.h"
 #include "slicer/motion.h"
 
 namespace strand::post {
@@ -15,6 +16,7 @@ struct LayerEstimate {
   double travel_length_mm = 0.0;
   double volume_mm3 = 0.0;
   double time_naive_s = 0.0;     // distance / feed
+  double time_trapezoid_s = 0.0; // acceleration and junction limits (motion_time.h)
 };
 
 struct Estimate {
@@ -23,10 +25,15 @@ struct Estimate {
   double travel_length_mm = 0.0;
   double volume_mm3 = 0.0;
   double time_naive_s = 0.0;     // sum of distance / feed, dwells included
+  double time_trapezoid_s = 0.0; // 0 unless estimated for a machine
 };
 
 // Length of a move from `from` (arcs measured along the arc), mm.
 double move_length(const slicer::Vec3& from, const slicer::Move& mv);
+// Lengths, volumes, strands and the naive time only.
 Estimate estimate(const slicer::MotionProgram& program);
+// Also the trapezoidal time with the machine's limits; valve lead dwells (one per strand)
+// count in both times.
+Estimate estimate(const slicer::MotionProgram& program, const machines::MachineProfile& m);
 
 }  // namespace strand::post

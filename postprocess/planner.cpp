@@ -6,6 +6,8 @@
 
 #include "postprocess/arc_segmentation.h"
 #include "postprocess/placement.h"
+#include "postprocess/valve_lag.h"
+#include "slicer/units.h"
 #include "slicer/tolerances.h"
 
 namespace strand::post {
@@ -41,7 +43,7 @@ class Planner {
     Vec2 at = s.start_mm + offset_;
     for (const auto& seg : s.segments) {
       const Vec2 end = seg.end_mm + offset_;
-      const double feed = feed_for(seg.feature);
+      const double feed = feed_for(seg.feature, area);
       if (seg.kind == slicer::SegmentKind::Line) {
         deposit(at, end, z, feed, area, s.width_mm, seg.feature);
       } else if (m_.arcs) {
@@ -82,10 +84,21 @@ class Planner {
     return mv;
   }
 
-  double feed_for(Feature f) const {
-    auto it = o_.speed_factors.find(f);
-    const double factor = it == o_.speed_factors.end() ? 1.0 : it->second;
-    return std::min(o_.speed_mm_per_min * factor, m_.limits.max_feed_mm_per_min);
+  // Base speed x feature factor (job first, then profile), capped by the machine's feed
+  // and, on E-driven machines, by its volumetric flow over the bead section.
+  double feed_for(Feature f, double area_mm2) const {
+    double factor = 1.0;
+    if (auto it = o_.speed_factors.find(f); it != o_.speed_factors.end()) {
+      factor = it->second;
+    } else if (auto pt = m_.speed_factors.find(f); pt != m_.speed_factors.end()) {
+      factor = pt->second;
+    }
+    double feed = std::min(o_.speed_mm_per_min * factor, m_.limits.max_feed_mm_per_min);
+    const double q_max = m_.limits.max_volumetric_flow_mm3_per_s;
+    if (m_.deposition.model == machines::DepositionModel::EVolumetric && q_max > 0 && area_mm2 > 0) {
+      feed = std::min(feed, slicer::mm_per_s_to_mm_per_min(q_max / area_mm2));
+    }
+    return feed;
   }
 
   // Travels to `target`: straight down or up when only z changes, else lift, cross, lower.
@@ -145,6 +158,9 @@ PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm
 slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachineProfile& machine,
                            const PlanOptions& options) {
   slicer::MotionProgram p = Planner(machine, options).run(t);
+  if (machine.deposition.model == machines::DepositionModel::Valve && machine.deposition.lag_s > 0) {
+    apply_valve_lag(p, machine.deposition.lag_s);
+  }
   check_fits(p, machine);
   return p;
 }

@@ -42,8 +42,14 @@ std::vector<std::string> header(const slicer::Toolpath& t, const machines::Machi
   }
   const auto& tot = report.at("totals");
   for (const char* k : {"layers", "deposit_length_mm", "travel_length_mm", "ink_volume_ml",
-                        "syringe_fills", "time_naive_s"}) {
+                        "reservoir_ml", "syringe_fills", "syringe_loads", "time_naive_s",
+                        "time_trapezoid_s"}) {
     h.push_back("estimate " + std::string(k) + " = " + value_text(tot.at(k)));
+  }
+  for (const auto& l : report.at("layers")) {
+    h.push_back("layer " + value_text(l.at("layer")) + ": length " + value_text(l.at("deposit_length_mm")) +
+                " mm, ink " + value_text(l.at("volume_ml")) + " mL, time " + value_text(l.at("time_trapezoid_s")) +
+                " s (naive " + value_text(l.at("time_naive_s")) + " s)");
   }
   h.push_back("");
   return h;
@@ -52,16 +58,20 @@ std::vector<std::string> header(const slicer::Toolpath& t, const machines::Machi
 }  // namespace
 
 Produced produce(const slicer::Toolpath& t, const machines::MachineProfile& m,
-                 const PlanOptions& options, const std::string& gcode_path) {
+                 const PlanOptions& options, const std::string& gcode_path, bool viewer_e) {
   Produced out;
   out.program = plan(t, m, options);
-  const Estimate e = estimate(out.program);
+  const Estimate e = estimate(out.program, m);
   out.report = make_report(t, m, e, gcode_path);
   out.report["parameters"]["arc-tolerance"] = options.arc_tolerance_mm;
   out.summary = summary_text(out.report);
   machines::EmitOptions eo;
   eo.header = header(t, m, options, out.report);
   out.gcode = machines::emit_gcode(out.program, m, eo);
+  if (viewer_e) {
+    eo.viewer_e = true;
+    out.viewer_gcode = machines::emit_gcode(out.program, m, eo);
+  }
   return out;
 }
 

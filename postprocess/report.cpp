@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "machines/gcode_format.h"
+#include "slicer/params.h"
 #include "slicer/units.h"
 
 namespace strand::post {
@@ -35,7 +36,10 @@ nlohmann::json make_report(const slicer::Toolpath& t, const machines::MachinePro
                       {"strands", l.strands},
                       {"deposit_length_mm", round_to(l.deposit_length_mm, 3)},
                       {"volume_mm3", round_to(l.volume_mm3, 3)},
-                      {"time_naive_s", round_to(l.time_naive_s, 2)}});
+                      {"volume_ml", round_to(slicer::mm3_to_ml(l.volume_mm3), 5)},
+                      {"syringe_fills", round_to(slicer::mm3_to_ml(l.volume_mm3) / m.deposition.reservoir_ml, 5)},
+                      {"time_naive_s", round_to(l.time_naive_s, 2)},
+                      {"time_trapezoid_s", round_to(l.time_trapezoid_s, 2)}});
     strands.push_back(l.strands);
   }
   return {
@@ -52,8 +56,11 @@ nlohmann::json make_report(const slicer::Toolpath& t, const machines::MachinePro
                   {"travel_length_mm", round_to(e.travel_length_mm, 3)},
                   {"ink_volume_mm3", round_to(e.volume_mm3, 3)},
                   {"ink_volume_ml", round_to(slicer::mm3_to_ml(e.volume_mm3), 4)},
+                  {"reservoir_ml", m.deposition.reservoir_ml},
                   {"syringe_fills", round_to(slicer::mm3_to_ml(e.volume_mm3) / m.deposition.reservoir_ml, 3)},
-                  {"time_naive_s", round_to(e.time_naive_s, 1)}}},
+                  {"syringe_loads", static_cast<int>(std::ceil(slicer::mm3_to_ml(e.volume_mm3) / m.deposition.reservoir_ml - 1e-9))},
+                  {"time_naive_s", round_to(e.time_naive_s, 1)},
+                  {"time_trapezoid_s", round_to(e.time_trapezoid_s, 1)}}},
       {"strands_per_layer", strands},
       {"layers", layers},
   };
@@ -77,8 +84,11 @@ std::string summary_text(const nlohmann::json& r) {
   if (d.contains("porosity")) o << "  porosity       " << machines::fmt_fixed(100.0 * d["porosity"].get<double>(), 1) << " %\n";
   o << "  deposited      " << machines::fmt_fixed(tot.at("deposit_length_mm").get<double>() / 1000.0, 3) << " m, ink "
     << machines::fmt_fixed(tot.at("ink_volume_ml").get<double>(), 2) << " mL ("
-    << machines::fmt_fixed(tot.at("syringe_fills").get<double>(), 2) << " syringe fills)\n";
-  o << "  time           " << clock(tot.at("time_naive_s").get<double>()) << " (distance / feed)\n";
+    << machines::fmt_fixed(tot.at("syringe_fills").get<double>(), 2) << " fills of the "
+    << slicer::short_number(tot.at("reservoir_ml").get<double>()) << " mL reservoir)\n";
+  o << "  time           " << clock(tot.at("time_trapezoid_s").get<double>())
+    << " (acceleration + junction limits), " << clock(tot.at("time_naive_s").get<double>())
+    << " (distance / feed)\n";
   return o.str();
 }
 

@@ -26,6 +26,8 @@ struct Move {
   Vec2 center_mm = Vec2::Zero(); // arc centre (absolute)
   bool ccw = true;               // arc direction
   double volume_mm3 = 0.0;       // ink deposited by this move (Deposit only)
+  bool coast = false;            // Deposit only: valve already closed (lag), the ink still
+                                 // in the nozzle finishes the bead
   double width_mm = 0.0;         // bead width, for ;WIDTH: and previews
   Feature feature = Feature::Infill;
   int layer = -1;                // index into MotionProgram::layers, -1 = before the first

@@ -15,5 +15,6 @@ void add_job_command(CLI::App& app, Action& action);
 void add_machines_command(CLI::App& app, Action& action);
 void add_plot_command(CLI::App& app, Action& action);
 void add_check_command(CLI::App& app, Action& action);
+void add_flow_command(CLI::App& app, Action& action);
 
 }  // namespace strand::cli

@@ -24,6 +24,7 @@ struct GenerateArgs {
   std::string output;
   std::string report;
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+  bool viewer_e = false;
 };
 
 std::string help_for(const slicer::ParamDef& d) {
@@ -43,7 +44,16 @@ struct JobSettings {
   std::string output;
   std::string report;
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+  bool viewer_e = false;
 };
+
+// "out/x.gcode" -> "out/x.viewer-e.gcode": the preview-only copy beside the printable file.
+std::string viewer_path(const std::string& out) {
+  const auto dot = out.rfind('.');
+  const auto slash = out.find_last_of("/\\");
+  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (has_ext ? out.substr(0, dot) : out) + ".viewer-e.gcode";
+}
 
 // The shared tail of `strand <generator>` and `strand job`: nothing is written unless
 // every step succeeded.
@@ -56,11 +66,13 @@ int run_job(const patterns::GeneratorSpec& spec, const nlohmann::json& given, co
   const machines::MachineProfile machine = machines::load_profile(s.machine);
   const std::string out = s.output.empty() ? spec.name + ".gcode" : s.output;
   const auto produced =
-      post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm), out);
+      post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm), out, s.viewer_e);
   const std::string report = produced.report.dump(2) + "\n";
   slicer::write_file_atomic(out, produced.gcode);
+  if (s.viewer_e) slicer::write_file_atomic(viewer_path(out), produced.viewer_gcode);
   if (!s.report.empty()) slicer::write_file_atomic(s.report, report);
   std::cout << produced.summary;
+  if (s.viewer_e) std::cout << "  preview copy   " << viewer_path(out) << " (computed E, not for printing)\n";
   return 0;
 }
 
@@ -70,7 +82,7 @@ int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
   for (const auto& d : table.defs) {
     if (a.options.at(d.key)->count() > 0) given[d.key] = slicer::parse_param_text(table, d, a.text.at(d.key));
   }
-  return run_job(spec, given, {a.machine, a.output, a.report, a.arc_tolerance_mm});
+  return run_job(spec, given, {a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e});
 }
 
 // Job file: {"generator", "machine", "params": {flag: value}, "output", "report",
@@ -122,6 +134,8 @@ void add_generator_commands(CLI::App& app, Action& action) {
     sub->add_option("--report", args->report, "write a JSON report here");
     sub->add_option("--arc-tolerance", args->arc_tolerance_mm,
                     "max chord error when arcs become G1 segments [mm] (default 0.01)");
+    sub->add_flag("--viewer-e", args->viewer_e,
+                  "also write <output>.viewer-e.gcode: computed E for viewers, not for printing");
     const patterns::GeneratorSpec* s = &spec;
     sub->callback([&action, s, args] { action = [s, args] { return run_generator(*s, *args); }; });
   }

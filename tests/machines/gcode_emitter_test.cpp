@@ -76,5 +76,89 @@ TEST(GcodeEmitter, ValveCommandsBracketDepositsWithM400) {
   EXPECT_EQ(g.find(" E"), std::string::npos) << "no E words on a valve machine";
 }
 
+TEST(GcodeEmitter, GrblDwellsInSecondsCommentsInParenthesesSyncWithG4P0) {
+  MachineProfile m;
+  m.firmware = Firmware::Grbl;
+  m.deposition.model = DepositionModel::Valve;
+  m.deposition.on_gcode = {"M8"};
+  m.deposition.off_gcode = {"M9"};
+  m.deposition.lead_s = 0.25;
+  EmitOptions o;
+  o.header = {"Strand (test)"};
+  const std::string g = emit_gcode(two_moves(), m, o);
+  EXPECT_NE(g.find("(Strand [test])\n"), std::string::npos) << g;
+  EXPECT_NE(g.find("G4 P0\nM8\nG4 P0.250\n"), std::string::npos) << g;
+  EXPECT_EQ(g.find("M400"), std::string::npos) << g;
+  EXPECT_EQ(g.find("M83"), std::string::npos) << g;
+  EXPECT_EQ(g.find(" E"), std::string::npos) << g;
+}
+
+TEST(GcodeEmitter, MarlinDwellsInMilliseconds) {
+  MachineProfile m;
+  m.deposition.model = DepositionModel::Valve;
+  m.deposition.on_gcode = {"M42 P6 S255"};
+  m.deposition.off_gcode = {"M42 P6 S0"};
+  m.deposition.lead_s = 0.25;
+  EXPECT_NE(emit_gcode(two_moves(), m, {}).find("M42 P6 S255\nG4 P250\n"), std::string::npos);
+}
+
+TEST(GcodeEmitter, LongExtrusionsAreSplitBelowExtrudeMaxLength) {
+  // 4 mm3 at 0.01 mm3/E = 400 E over a 10 mm move; max 150 per move -> 3 moves of 133.33.
+  MachineProfile m = e_machine(true);
+  m.deposition.mm3_per_e = 0.01;
+  m.deposition.extrude_max_length = 150.0;
+  m.deposition.prime_e = 320.0;  // E-only prime: 3 moves of 106.67
+  const std::string g = emit_gcode(two_moves(), m, {});
+  EXPECT_NE(g.find("G1 X3.333 E133.33333 F250\nG1 X6.667 E133.33333\nG1 X10.000 E133.33333\n"), std::string::npos) << g;
+  EXPECT_NE(g.find("G1 E106.66667 F200 ; prime\nG1 E106.66667 F200 ; prime\nG1 E106.66667 F200 ; prime\n"), std::string::npos) << g;
+  EXPECT_NE(g.find("M302 S0"), std::string::npos) << "cold paste on Marlin";
+  EXPECT_LT(g.find("M302 S0"), g.find("; prime"));
+}
+
+TEST(GcodeEmitter, CoastMovesRunWithTheValveClosed) {
+  MachineProfile m;
+  m.deposition.model = DepositionModel::Valve;
+  m.deposition.on_gcode = {"ON"};
+  m.deposition.off_gcode = {"OFF"};
+  auto p = two_moves();
+  auto tail = p.moves.back();
+  p.moves.back().end_mm.x() = 7.0;
+  tail.coast = true;
+  p.moves.push_back(tail);
+  const std::string g = emit_gcode(p, m, {});
+  EXPECT_NE(g.find("G1 X7.000 F250\nM400\nOFF\nG1 X10.000\n"), std::string::npos) << g;
+}
+
+slicer::MotionProgram quarter_arc() {
+  auto p = two_moves();
+  auto& d = p.moves.back();
+  d.is_arc = true;
+  d.ccw = true;
+  d.center_mm = {0, 5};
+  d.end_mm = {5, 5, 0.5};
+  return p;
+}
+
+TEST(GcodeEmitter, ArcsAreG2G3OnlyWhereAllowed) {
+  MachineProfile m = e_machine(true);
+  m.arcs = true;
+  EXPECT_NE(emit_gcode(quarter_arc(), m, {}).find("G3 X5.000 Y5.000 I0.000 J5.000"), std::string::npos);
+  m.arcs = false;
+  const std::string g = emit_gcode(quarter_arc(), m, {});
+  EXPECT_EQ(g.find("\nG3 "), std::string::npos) << g;
+  EXPECT_EQ(g.find("\nG2 "), std::string::npos) << g;
+  EXPECT_NE(g.find("G1 X5.000 Y5.000"), std::string::npos) << g;
+}
+
+TEST(GcodeEmitter, ViewerCopySaysNotForPrintingAndAddsE) {
+  MachineProfile m;
+  m.deposition.model = DepositionModel::None;
+  EmitOptions o;
+  o.viewer_e = true;
+  const std::string g = emit_gcode(two_moves(), m, o);
+  EXPECT_EQ(g.find("; PREVIEW ONLY - NOT FOR PRINTING"), 0u) << g;
+  EXPECT_NE(g.find("G1 X10.000 E4.00000 F250"), std::string::npos) << g;
+}
+
 }  // namespace
 }  // namespace strand::machines

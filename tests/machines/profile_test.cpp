@@ -71,5 +71,38 @@ TEST(Profiles, UnknownMachineListsKnownOnes) {
   }
 }
 
+TEST(Profiles, IssueFourProfilesShip) {
+  const auto ldm = load_profile("deltawasp-2040-clay-ldm");
+  EXPECT_EQ(ldm.deposition.model, DepositionModel::EVolumetric);
+  EXPECT_NEAR(ldm.deposition.mm3_per_e, 3.14159265 * 0.36, 1e-6) << "1.2 mm outlet";
+  EXPECT_TRUE(ldm.deposition.relative_e);
+  const auto valve = load_profile("deltawasp-2040-clay-valve");
+  EXPECT_EQ(valve.deposition.model, DepositionModel::Valve);
+  EXPECT_GT(valve.deposition.lag_s, 0.0);
+  EXPECT_DOUBLE_EQ(valve.speed_factors.at(slicer::Feature::Node), 1.1);
+  const auto bio = load_profile("bioprinter-xyz-reprap");
+  EXPECT_EQ(bio.firmware, Firmware::RepRap);
+  EXPECT_EQ(bio.deposition.model, DepositionModel::Valve);
+}
+
+TEST(Profiles, NewKeysAreCheckedByPath) {
+  auto j = minimal();
+  j["speed_factors"] = {{"nodes", 1.1}, {"ligament", 40}};
+  j["limits"] = {{"max_volumetric_flow_mm3_per_s", -1}};
+  j["deposition"]["extrude_max_length"] = "200";
+  const std::string e = error_of(j);
+  EXPECT_NE(e.find("speed_factors.nodes: unknown key"), std::string::npos) << e;
+  EXPECT_NE(e.find("speed_factors.ligament = 40: must be in [0.05, 10]"), std::string::npos) << e;
+  EXPECT_NE(e.find("limits.max_volumetric_flow_mm3_per_s = -1"), std::string::npos) << e;
+  EXPECT_NE(e.find("deposition.extrude_max_length = \"200\": must be a number"), std::string::npos) << e;
+}
+
+TEST(Profiles, GrblWithEAxisIsRejected) {
+  auto j = minimal();
+  j["firmware"]["flavour"] = "grbl";
+  j["deposition"] = {{"model", "e-volumetric"}, {"mm3_per_e", 1.0}};
+  EXPECT_NE(error_of(j).find("GRBL has no E axis"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace strand::machines
