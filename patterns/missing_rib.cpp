@@ -3,6 +3,7 @@
 // one non-crossing closed strand per layer.
 #include "patterns/missing_rib.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -128,7 +129,8 @@ MissingRibGeometry missing_rib_geometry(const MissingRibParams& p) {
   g.width_mm = g.frame_width_mm + p.nozzle_mm;
   g.depth_mm = g.frame_depth_mm + p.nozzle_mm;
   g.height_mm = p.layers * p.layer_height_mm;
-  g.min_clearance_mm = p.rib_mm * (std::cos(theta) - std::sin(theta));
+  g.min_clearance_mm = std::min(p.rib_mm * (std::cos(theta) - std::sin(theta)),
+                                (p.rib_mm - p.nozzle_mm / std::sqrt(2.0)) * std::cos(theta));
   return g;
 }
 

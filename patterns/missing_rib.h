@@ -35,8 +35,9 @@ struct MissingRibGeometry {
   double width_mm = 0.0;            // outer size: frame centre line + nozzle
   double depth_mm = 0.0;
   double height_mm = 0.0;           // layers * layer height
-  // Narrowest centre-line clearance between filaments that are not joined (bend to bend
-  // across a cell: 2 rib (cos - sin); outward bend to frame: rib (cos - sin)), mm.
+  // Narrowest centre-line clearance between filaments that are not joined: outward bend to
+  // frame, rib (cos - sin) (bend to bend across a cell is twice that), and the span of a rib
+  // left after its node's corner cut, (rib - d / sqrt 2) cos, mm.
   double min_clearance_mm = 0.0;
 };
 

@@ -1,5 +1,6 @@
 // Missing-rib parameters: the table behind `strand missing-rib` flags and job keys, and the
 // rules that tie them together (ribs long enough that filaments keep a nozzle apart).
+#include <algorithm>
 #include <cmath>
 
 #include "patterns/missing_rib.h"
@@ -59,12 +60,16 @@ MissingRibParams missing_rib_params_from(const nlohmann::json& v) {
   p.rows = v.at("rows").get<int>();
   p.cols = v.at("cols").get<int>();
   const double theta = slicer::deg_to_rad(p.angle_deg);
-  const double min_rib = d / (std::cos(theta) - std::sin(theta));
+  // Bends of a cell, and outer bends and the frame, stay a nozzle apart: d / (cos - sin).
+  // What is left of a rib after the corner cut at its node (d / sqrt 2) spans at least a
+  // nozzle across, so a frame piece or rib never runs alongside the cut: d / cos + d / sqrt 2.
+  const double min_rib = std::max(d / (std::cos(theta) - std::sin(theta)), d / std::cos(theta) + d / std::sqrt(2.0));
   if (p.rib_mm < min_rib - 1e-12) {
     problems.push_back(slicer::problem(
         kName, "rib", v.at("rib"),
-        "must be >= nozzle / (cos(angle) - sin(angle)) = " + slicer::short_number(std::ceil(min_rib * 1e4) / 1e4) +
-            " at angle " + slicer::short_number(p.angle_deg) + " deg, so bends keep a nozzle apart from each other and from the frame",
+        "must be >= " + slicer::short_number(std::ceil(min_rib * 1e4) / 1e4) + " at nozzle " + slicer::short_number(d) +
+            " and angle " + slicer::short_number(p.angle_deg) +
+            " deg = max(nozzle / (cos - sin), nozzle / cos + nozzle / sqrt 2), so filaments that are not joined stay a nozzle apart",
         "mm"));
   }
   p.layer_height_mm = v.contains("layer-height") ? v.at("layer-height").get<double>() : 0.8 * d;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -13,6 +14,7 @@
 #include "postprocess/estimate.h"
 #include "postprocess/gcode_parser.h"
 #include "postprocess/produce.h"
+#include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/units.h"
 #include "tests/support/gcode_view.h"
@@ -48,6 +50,27 @@ std::pair<slicer::Vec2, slicer::Vec2> deposit_bounds(const Emitted& e, int layer
   return {lo, hi};
 }
 
+// Smallest centre-line distance between deposits of one layer that do not share an end
+// point: below the nozzle diameter, two beads that are not joined would overlap.
+double min_gap_between_unjoined(const Emitted& e, int layer) {
+  std::vector<testing::DepositSeg> segs;
+  for (const auto& s : testing::deposit_segments(e.parsed.program)) {
+    if (s.layer == layer) segs.push_back(s);
+  }
+  double gap = 1e9;
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const slicer::Vec2 a = segs[i].a.head<2>(), b = segs[i].b.head<2>();
+    for (std::size_t j = i + 1; j < segs.size(); ++j) {
+      const slicer::Vec2 c = segs[j].a.head<2>(), d = segs[j].b.head<2>();
+      const double joined = std::min({(a - c).norm(), (a - d).norm(), (b - c).norm(), (b - d).norm()});
+      if (joined < 2e-3) continue;
+      gap = std::min({gap, slicer::point_segment_distance(a, c, d), slicer::point_segment_distance(b, c, d),
+                      slicer::point_segment_distance(c, a, b), slicer::point_segment_distance(d, a, b)});
+    }
+  }
+  return gap;
+}
+
 void expect_sound(const Emitted& e, const std::string& what) {
   SCOPED_TRACE(what);
   const auto c = post::find_contacts(e.parsed.program, 0.01, 1e-3);
@@ -67,6 +90,7 @@ void expect_sound(const Emitted& e, const std::string& what) {
   EXPECT_NEAR(hi.y() - lo.y() + d, fp[1].get<double>(), 0.01);
   EXPECT_NEAR(hi.x() + lo.x(), 0.0, 0.01) << "centred";
   EXPECT_NEAR(hi.y() + lo.y(), 0.0, 0.01) << "centred";
+  EXPECT_GE(min_gap_between_unjoined(e, 0), d - 2e-3) << "filaments that are not joined keep a nozzle apart";
 }
 
 TEST(MissingRib, FiftyRandomValidLatticesHaveNoCrossingAndOneStrandPerLayer) {
@@ -76,7 +100,8 @@ TEST(MissingRib, FiftyRandomValidLatticesHaveNoCrossingAndOneStrandPerLayer) {
   for (int n = 0; n < 50; ++n) {
     const double d = nozzle(rng), a = angle(rng);
     const double t = slicer::deg_to_rad(a);
-    const double rib = stretch(rng) * d / (std::cos(t) - std::sin(t)) + 1e-9;
+    const double limit = std::max(d / (std::cos(t) - std::sin(t)), d / std::cos(t) + d / std::sqrt(2.0));
+    const double rib = stretch(rng) * limit + 1e-9;
     const nlohmann::json given = {{"nozzle", d}, {"rib", rib}, {"angle", a}, {"rows", cells(rng)},
                                   {"cols", cells(rng)}, {"layers", layers(rng)}};
     expect_sound(emit(given), given.dump());
@@ -144,6 +169,23 @@ TEST(MissingRib, PorosityFromDepositedLength) {
 
 TEST(MissingRib, SameInputSameGcode) { EXPECT_EQ(emit(kSample).gcode, emit(kSample).gcode); }
 
+TEST(MissingRib, SampleJobHasNoCrossingAndOneStrandPerLayer) {
+  const auto job = nlohmann::json::parse(slicer::read_file(STRAND_SOURCE_DIR "/samples/missing-rib.json"));
+  ASSERT_EQ(job.at("generator"), "missing-rib");
+  ASSERT_EQ(job.at("machine"), "deltawasp-2040-clay");
+  nlohmann::json given = job.at("params");
+  const auto e = emit(given);
+  expect_sound(e, "samples/missing-rib.json");
+  // The only touch is where each closed strand ends on its own start: elsewhere, passes
+  // through a node stay a nozzle apart.
+  const auto touches = post::find_contacts(e.parsed.program, 0.01, 1e-3).touches;
+  EXPECT_EQ(touches.size(), e.toolpath.layers.size());
+  for (const auto& t : touches) {
+    const slicer::Vec2 start = e.toolpath.layers[static_cast<std::size_t>(t.layer)].strokes[0].start_mm;
+    EXPECT_LT((t.at_mm - start).norm(), 2e-3) << "touch in layer " << t.layer << " at " << t.at_mm.transpose();
+  }
+}
+
 std::string error_of(const nlohmann::json& given) {
   try {
     emit(given);
@@ -155,13 +197,18 @@ std::string error_of(const nlohmann::json& given) {
 
 TEST(MissingRibParams, RibTooShortForTheNozzleNamesTheLimit) {
   auto bad = kSample;
-  bad["rib"] = 0.8;  // limit at 20 deg, d 0.6: 0.6 / (cos 20 - sin 20) = 1.00389
+  // At 20 deg and d 0.6 the corner-cut rule binds: 0.6 / cos 20 + 0.6 / sqrt 2 = 1.06276 >
+  // 0.6 / (cos 20 - sin 20) = 1.00389.
+  bad["rib"] = 0.8;
   const std::string msg = error_of(bad);
-  EXPECT_NE(msg.find("missing-rib.rib = 0.8: must be >= nozzle / (cos(angle) - sin(angle)) = 1.0039"),
-            std::string::npos) << msg;
+  EXPECT_NE(msg.find("missing-rib.rib = 0.8: must be >= 1.0628 at nozzle 0.6 and angle 20"), std::string::npos) << msg;
   auto ok = kSample;
-  ok["rib"] = 1.0039;
+  ok["rib"] = 1.0628;
   EXPECT_EQ(error_of(ok), "");
+  // At 40 deg the bends bind: 0.6 / (cos 40 - sin 40) = 4.86788.
+  bad["angle"] = 40;
+  bad["rib"] = 4.8;
+  EXPECT_NE(error_of(bad).find("must be >= 4.8679"), std::string::npos) << error_of(bad);
 }
 
 TEST(MissingRibParams, AngleOutsideOpenZeroToFortyFiveIsRejected) {

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -13,6 +14,7 @@
 #include "postprocess/estimate.h"
 #include "postprocess/gcode_parser.h"
 #include "postprocess/produce.h"
+#include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/units.h"
 #include "tests/support/gcode_view.h"
@@ -40,6 +42,27 @@ const nlohmann::json kSample = {{"nozzle", 0.6},  {"cell-width", 8.0}, {"cell-he
                                 {"angle", 20},    {"rows", 4},         {"cols", 4},
                                 {"layers", 3}};
 
+// Smallest centre-line distance between deposits of one layer that do not share an end
+// point: below the nozzle diameter, two beads that are not joined would overlap.
+double min_gap_between_unjoined(const Emitted& e, int layer) {
+  std::vector<testing::DepositSeg> segs;
+  for (const auto& s : testing::deposit_segments(e.parsed.program)) {
+    if (s.layer == layer) segs.push_back(s);
+  }
+  double gap = 1e9;
+  for (std::size_t i = 0; i < segs.size(); ++i) {
+    const slicer::Vec2 a = segs[i].a.head<2>(), b = segs[i].b.head<2>();
+    for (std::size_t j = i + 1; j < segs.size(); ++j) {
+      const slicer::Vec2 c = segs[j].a.head<2>(), d = segs[j].b.head<2>();
+      const double joined = std::min({(a - c).norm(), (a - d).norm(), (b - c).norm(), (b - d).norm()});
+      if (joined < 2e-3) continue;
+      gap = std::min({gap, slicer::point_segment_distance(a, c, d), slicer::point_segment_distance(b, c, d),
+                      slicer::point_segment_distance(c, a, b), slicer::point_segment_distance(d, a, b)});
+    }
+  }
+  return gap;
+}
+
 void expect_sound(const Emitted& e, const std::string& what) {
   SCOPED_TRACE(what);
   const auto c = post::find_contacts(e.parsed.program, 0.01, 1e-3);
@@ -59,6 +82,7 @@ void expect_sound(const Emitted& e, const std::string& what) {
   EXPECT_NEAR(hi.y() - lo.y() + d, fp[1].get<double>(), 0.01);
   EXPECT_NEAR(hi.x() + lo.x(), 0.0, 0.01) << "centred";
   EXPECT_NEAR(hi.y() + lo.y(), 0.0, 0.01) << "centred";
+  EXPECT_GE(min_gap_between_unjoined(e, 0), d - 2e-3) << "filaments that are not joined keep a nozzle apart";
 }
 
 TEST(Reentrant, FiftyRandomValidHoneycombsHaveNoCrossingAndOneStrandPerLayer) {
@@ -134,6 +158,16 @@ TEST(Reentrant, PorosityFromDepositedLength) {
                      d.at("height_mm").get<double>();
   const double bead = slicer::bead_area_mm2(0.6, 0.8 * 0.6);
   EXPECT_NEAR(d.at("porosity").get<double>(), 1 - est.deposit_length_mm * bead / box, 1e-4);
+}
+
+TEST(Reentrant, SampleJobHasNoCrossingAndOneStrandPerLayer) {
+  const auto job = nlohmann::json::parse(slicer::read_file(STRAND_SOURCE_DIR "/samples/reentrant.json"));
+  ASSERT_EQ(job.at("generator"), "reentrant");
+  ASSERT_EQ(job.at("machine"), "deltawasp-2040-clay");
+  nlohmann::json given = job.at("params");
+  const auto e = emit(given);
+  expect_sound(e, "samples/reentrant.json");
+  EXPECT_TRUE(post::find_contacts(e.parsed.program, 0.01, 1e-3).touches.empty()) << "passes stay a nozzle apart";
 }
 
 std::string error_of(const nlohmann::json& given) {
