@@ -134,29 +134,24 @@ MissingRibGeometry missing_rib_geometry(const MissingRibParams& p) {
   return g;
 }
 
-slicer::Toolpath generate_missing_rib(const MissingRibParams& p) {
-  const MissingRibGeometry g = missing_rib_geometry(p);
-  const RibNetwork net = Builder(p, g).build();
-  std::vector<slicer::Stroke> strands = non_crossing_circuits(net, p.nozzle_mm);
-  for (auto& s : strands) {
-    s.width_mm = p.nozzle_mm;
-    s.height_mm = p.layer_height_mm;
-  }
-  slicer::Toolpath t;
-  t.generator = "missing-rib";
-  for (int k = 0; k < p.layers; ++k) t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, strands});
+namespace {
+
+// Header and report figures, from the strands actually laid down.
+nlohmann::json missing_rib_report(const MissingRibParams& p, const MissingRibGeometry& g, const RibNetwork& net,
+                                  const std::vector<slicer::Stroke>& strands) {
   double per_layer = 0.0;
   for (const auto& s : strands) per_layer += slicer::stroke_length(s);
   const double area = slicer::bead_area_mm2(p.nozzle_mm, p.layer_height_mm);
   const double density = per_layer * p.layers * area / (g.width_mm * g.depth_mm * g.height_mm);
   int ribs = 0;
   for (const auto& e : net.edges) ribs += e.feature == Feature::Ligament;
-  t.derived = {
+  return {
       {"footprint_mm", {g.width_mm, g.depth_mm}},
       {"height_mm", g.height_mm},
       {"layers", p.layers},
       {"layer_height_mm", p.layer_height_mm},
       {"rib_mm", p.rib_mm},
+      {"rib_printed_mm", p.rib_mm - p.nozzle_mm / std::sqrt(2.0)},
       {"angle_deg", p.angle_deg},
       {"pitch_mm", g.pitch_mm},
       {"nodes", (p.rows + 1) * (p.cols + 1)},
@@ -175,6 +170,22 @@ slicer::Toolpath generate_missing_rib(const MissingRibParams& p) {
        "neighbouring rib at each node (corner cut one nozzle from the opposite pass) and circuits "
        "are merged at nodes: one closed strand"},
   };
+}
+
+}  // namespace
+
+slicer::Toolpath generate_missing_rib(const MissingRibParams& p) {
+  const MissingRibGeometry g = missing_rib_geometry(p);
+  const RibNetwork net = Builder(p, g).build();
+  std::vector<slicer::Stroke> strands = non_crossing_circuits(net, p.nozzle_mm);
+  for (auto& s : strands) {
+    s.width_mm = p.nozzle_mm;
+    s.height_mm = p.layer_height_mm;
+  }
+  slicer::Toolpath t;
+  t.generator = "missing-rib";
+  for (int k = 0; k < p.layers; ++k) t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, strands});
+  t.derived = missing_rib_report(p, g, net, strands);
   return t;
 }
 

@@ -106,19 +106,15 @@ ReentrantGeometry reentrant_geometry(const ReentrantParams& p) {
   return g;
 }
 
-slicer::Toolpath generate_reentrant(const ReentrantParams& p) {
-  const ReentrantGeometry g = reentrant_geometry(p);
-  const slicer::Stroke forward = serpentine(p, g);
-  const slicer::Stroke backward = slicer::reversed(forward);
-  slicer::Toolpath t;
-  t.generator = "reentrant";
-  for (int k = 0; k < p.layers; ++k) {
-    t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, {k % 2 == 0 ? forward : backward}});
-  }
-  const double per_layer = slicer::stroke_length(forward);
+namespace {
+
+// Header and report figures, from the strand actually laid down.
+nlohmann::json reentrant_report(const ReentrantParams& p, const ReentrantGeometry& g, const slicer::Stroke& layer) {
+  const double per_layer = slicer::stroke_length(layer);
   const double area = slicer::bead_area_mm2(p.nozzle_mm, p.layer_height_mm);
   const double density = per_layer * p.layers * area / (g.width_mm * g.depth_mm * g.height_mm);
-  t.derived = {
+  const double theta = slicer::deg_to_rad(p.angle_deg);
+  return {
       {"footprint_mm", {g.width_mm, g.depth_mm}},
       {"height_mm", g.height_mm},
       {"layers", p.layers},
@@ -129,6 +125,7 @@ slicer::Toolpath generate_reentrant(const ReentrantParams& p) {
       {"tip_depth_mm", g.tip_depth_mm},
       {"row_pitch_mm", g.row_pitch_mm},
       {"inclined_rib_mm", g.inclined_rib_mm},
+      {"inclined_rib_printed_mm", (p.cell_width_mm / 2 - p.nozzle_mm) / std::cos(theta)},
       {"vertical_rib_passes", 2},
       {"tip_gap_mm", g.tip_gap_mm},
       {"band_gap_mm", g.band_gap_mm},
@@ -144,6 +141,20 @@ slicer::Toolpath generate_reentrant(const ReentrantParams& p) {
        "bands between neighbouring rib lines join at the free tips of the top and bottom rows "
        "(rows even), interior vertical ribs get one pass per band side by side: one open strand"},
   };
+}
+
+}  // namespace
+
+slicer::Toolpath generate_reentrant(const ReentrantParams& p) {
+  const ReentrantGeometry g = reentrant_geometry(p);
+  const slicer::Stroke forward = serpentine(p, g);
+  const slicer::Stroke backward = slicer::reversed(forward);
+  slicer::Toolpath t;
+  t.generator = "reentrant";
+  for (int k = 0; k < p.layers; ++k) {
+    t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, {k % 2 == 0 ? forward : backward}});
+  }
+  t.derived = reentrant_report(p, g, forward);
   return t;
 }
 
