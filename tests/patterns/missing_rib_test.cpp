@@ -146,6 +146,27 @@ TEST(MissingRib, RibsAreTheRotatedNodeLattice) {
   EXPECT_EQ(tilt_signs, (std::set<long>{-1, 1})) << "nodes alternate between +theta and -theta";
 }
 
+TEST(MissingRib, LargeLatticeIsStillOneClosedStrand) {
+  MissingRibParams p;
+  p.nozzle_mm = 0.5;
+  p.rib_mm = 1.5;
+  p.rows = 40;
+  p.cols = 55;
+  p.layers = 1;
+  p.layer_height_mm = 0.4;
+  const auto t = generate_missing_rib(p);
+  ASSERT_EQ(t.layers[0].strokes.size(), 1u) << "circuits merged at nodes into one";
+  const auto& s = t.layers[0].strokes[0];
+  EXPECT_LT((s.end_mm() - s.start_mm).norm(), 1e-9) << "closed";
+  int ribs = 0, cuts = 0;
+  for (const auto& seg : s.segments) {
+    ribs += seg.feature == slicer::Feature::Ligament;
+    cuts += seg.feature == slicer::Feature::Node;
+  }
+  EXPECT_EQ(ribs, t.derived.at("ribs_per_layer").get<int>()) << "every rib once";
+  EXPECT_EQ(cuts, 2 * 41 * 56) << "two passes turn at every node";
+}
+
 TEST(MissingRib, PitchAndSizeFollowFromRibAndAngle) {
   const auto e = emit(kSample);
   const double p = 2 * 5.0 * std::cos(slicer::deg_to_rad(20.0));
