@@ -130,7 +130,7 @@ MissingRibGeometry missing_rib_geometry(const MissingRibParams& p) {
   g.depth_mm = g.frame_depth_mm + p.nozzle_mm;
   g.height_mm = p.layers * p.layer_height_mm;
   g.min_clearance_mm = std::min(p.rib_mm * (std::cos(theta) - std::sin(theta)),
-                                (p.rib_mm - p.nozzle_mm / std::sqrt(2.0)) * std::cos(theta));
+                                (p.rib_mm - p.node_gap_mm / std::sqrt(2.0)) * std::cos(theta));
   return g;
 }
 
@@ -151,13 +151,13 @@ nlohmann::json missing_rib_report(const MissingRibParams& p, const MissingRibGeo
       {"layers", p.layers},
       {"layer_height_mm", p.layer_height_mm},
       {"rib_mm", p.rib_mm},
-      {"rib_printed_mm", p.rib_mm - p.nozzle_mm / std::sqrt(2.0)},
+      {"rib_printed_mm", p.rib_mm - p.node_gap_mm / std::sqrt(2.0)},
       {"angle_deg", p.angle_deg},
       {"pitch_mm", g.pitch_mm},
       {"nodes", (p.rows + 1) * (p.cols + 1)},
       {"ribs_per_layer", ribs},
       {"min_clearance_mm", g.min_clearance_mm},
-      {"node_gap_mm", p.nozzle_mm},
+      {"node_gap_mm", p.node_gap_mm},
       {"filament_length_per_layer_mm", per_layer},
       {"filament_length_mm", per_layer * p.layers},
       {"bead_area_mm2", area},
@@ -167,7 +167,7 @@ nlohmann::json missing_rib_report(const MissingRibParams& p, const MissingRibGeo
       {"strands_per_layer", strands.size()},
       {"strands_why",
        "frame pieces pair the outward rib ends so every vertex has even degree; passes turn into a "
-       "neighbouring rib at each node (corner cut one nozzle from the opposite pass) and circuits "
+       "neighbouring rib at each node (corner cut node-gap from the opposite pass) and circuits "
        "are merged at nodes: one closed strand"},
   };
 }
@@ -177,7 +177,7 @@ nlohmann::json missing_rib_report(const MissingRibParams& p, const MissingRibGeo
 slicer::Toolpath generate_missing_rib(const MissingRibParams& p) {
   const MissingRibGeometry g = missing_rib_geometry(p);
   const RibNetwork net = Builder(p, g).build();
-  std::vector<slicer::Stroke> strands = non_crossing_circuits(net, p.nozzle_mm);
+  std::vector<slicer::Stroke> strands = non_crossing_circuits(net, p.node_gap_mm);
   for (auto& s : strands) {
     s.width_mm = p.nozzle_mm;
     s.height_mm = p.layer_height_mm;

@@ -3,7 +3,7 @@
 // neighbouring nodes is joined by two ribs meeting at a re-entrant bend; pulling the
 // lattice straightens the bends and rotates the nodes, which opens it in both directions.
 // Each layer is one closed strand that turns at every node (no crossing): the two passes
-// through a node each cut its corner, one nozzle apart, so they touch side by side.
+// through a node each cut its corner, by default one nozzle apart, so they touch side by side.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -17,6 +17,7 @@ struct MissingRibParams {
   double nozzle_mm = 0.84;          // filament diameter d
   double rib_mm = 6.0;              // length of every rib, node to bend
   double angle_deg = 20.0;          // rib angle theta: rotation of each node's ribs
+  double node_gap_mm = 0.84;        // distance between the two passes turning at a node (d)
   int rows = 4;                     // cells along y
   int cols = 4;                     // cells along x
   int layers = 4;
@@ -37,7 +38,7 @@ struct MissingRibGeometry {
   double height_mm = 0.0;           // layers * layer height
   // Narrowest centre-line clearance between filaments that are not joined: outward bend to
   // frame, rib (cos - sin) (bend to bend across a cell is twice that), and the span of a rib
-  // left after its node's corner cut, (rib - d / sqrt 2) cos, mm.
+  // left after its node's corner cut, (rib - node gap / sqrt 2) cos, mm.
   double min_clearance_mm = 0.0;
 };
 

@@ -19,6 +19,7 @@ const slicer::ParamTable& missing_rib_table() {
           {"nozzle", ParamType::Number, "mm", "filament (nozzle) diameter d; required", 0.0, true, 10.0},
           {"rib", ParamType::Number, "mm", "rib length, node to bend; required", 0.0, true, 1000.0},
           {"angle", ParamType::Number, "deg", "rib angle theta: nodes are rotated alternately by +theta and -theta", 0.0, true, 45.0, true, 20.0},
+          {"node-gap", ParamType::Number, "mm", "distance between the two passes that turn at a node (their corners are cut); 0 = they meet on the node, nozzle = beads touch side by side", 0.0, false, 10.0, false, nullptr, "nozzle"},
           {"rows", ParamType::Integer, "", "cells along y", 1.0, false, 1000.0, false, 4},
           {"cols", ParamType::Integer, "", "cells along x", 1.0, false, 1000.0, false, 4},
           {"height", ParamType::Number, "mm", "part height, rounded to whole layers; give --height or --layers", 0.0, true, 10000.0},
@@ -60,16 +61,24 @@ MissingRibParams missing_rib_params_from(const nlohmann::json& v) {
   p.rows = v.at("rows").get<int>();
   p.cols = v.at("cols").get<int>();
   const double theta = slicer::deg_to_rad(p.angle_deg);
+  p.node_gap_mm = v.contains("node-gap") ? v.at("node-gap").get<double>() : d;
+  if (p.node_gap_mm > d + 1e-12) {
+    problems.push_back(slicer::problem(kName, "node-gap", v.at("node-gap"),
+                                       "must be in [0, nozzle] = [0, " + slicer::short_number(d) +
+                                           "] so the passes at a node still touch",
+                                       "mm"));
+  }
   // Bends of a cell, and outer bends and the frame, stay a nozzle apart: d / (cos - sin).
-  // What is left of a rib after the corner cut at its node (d / sqrt 2) spans at least a
-  // nozzle across, so a frame piece or rib never runs alongside the cut: d / cos + d / sqrt 2.
-  const double min_rib = std::max(d / (std::cos(theta) - std::sin(theta)), d / std::cos(theta) + d / std::sqrt(2.0));
+  // What is left of a rib after the corner cut at its node (node gap / sqrt 2) spans at least
+  // a nozzle across, so a frame piece or rib never runs alongside the cut: d / cos + gap / sqrt 2.
+  const double min_rib = std::max(d / (std::cos(theta) - std::sin(theta)),
+                                  d / std::cos(theta) + p.node_gap_mm / std::sqrt(2.0));
   if (p.rib_mm < min_rib - 1e-12) {
     problems.push_back(slicer::problem(
         kName, "rib", v.at("rib"),
         "must be >= " + slicer::short_number(std::ceil(min_rib * 1e4) / 1e4) + " at nozzle " + slicer::short_number(d) +
             " and angle " + slicer::short_number(p.angle_deg) +
-            " deg = max(nozzle / (cos - sin), nozzle / cos + nozzle / sqrt 2), so filaments that are not joined stay a nozzle apart",
+            " deg = max(nozzle / (cos - sin), nozzle / cos + node-gap / sqrt 2), so filaments that are not joined stay a nozzle apart",
         "mm"));
   }
   p.layer_height_mm = v.contains("layer-height") ? v.at("layer-height").get<double>() : 0.8 * d;

@@ -242,6 +242,34 @@ TEST(MissingRibParams, AngleOutsideOpenZeroToFortyFiveIsRejected) {
   }
 }
 
+TEST(MissingRib, NodeGapZeroPassesMeetOnTheNodesWithoutCrossing) {
+  auto given = kSample;
+  given["node-gap"] = 0;
+  const auto e = emit(given);
+  const auto c = post::find_contacts(e.parsed.program, 0.01, 1e-3);
+  EXPECT_TRUE(c.crossings.empty()) << c.crossings.size() << " crossings";
+  const double p = e.toolpath.derived.at("pitch_mm").get<double>();
+  std::set<std::pair<long, long>> touched;  // nodes (i, j) where two passes meet
+  for (const auto& t : c.touches) {
+    if (t.layer != 0) continue;
+    const double fi = t.at_mm.y() / p + 2.0, fj = t.at_mm.x() / p + 2.5;  // 4 x 5 cells, centred
+    const long i = std::lround(fi), j = std::lround(fj);
+    const bool on_node = std::abs(fi - i) * p < 2e-3 && std::abs(fj - j) * p < 2e-3;
+    const bool at_start = (t.at_mm - e.toolpath.layers[0].strokes[0].start_mm).norm() < 2e-3;
+    EXPECT_TRUE(on_node || at_start) << "touch away from the nodes at " << t.at_mm.transpose();
+    if (on_node) touched.insert({i, j});
+  }
+  EXPECT_EQ(touched.size(), 5u * 6u) << "the two passes meet on every node";
+  for (const auto& seg : e.toolpath.layers[0].strokes[0].segments) EXPECT_NE(seg.feature, slicer::Feature::Node);
+}
+
+TEST(MissingRibParams, NodeGapAboveTheNozzleIsRejected) {
+  auto bad = kSample;
+  bad["node-gap"] = 0.7;
+  EXPECT_NE(error_of(bad).find("missing-rib.node-gap = 0.7: must be in [0, nozzle] = [0, 0.6]"), std::string::npos)
+      << error_of(bad);
+}
+
 TEST(MissingRibParams, RowsAndColsAtLeastOne) {
   auto bad = kSample;
   bad["rows"] = 0;
