@@ -44,24 +44,11 @@ void require_one_of(const nlohmann::json& v, const char* a, const char* b, std::
   }
 }
 
-}  // namespace
-
-MissingRibParams missing_rib_params_from(const nlohmann::json& v) {
-  std::vector<std::string> problems;
-  if (!v.contains("nozzle")) problems.push_back("missing-rib.nozzle: missing (required, > 0 mm)");
-  if (!v.contains("rib")) problems.push_back("missing-rib.rib: missing (required, > 0 mm)");
-  require_one_of(v, "height", "layers", problems);
-  if (!problems.empty()) throw InputError(problems);
-
-  MissingRibParams p;
-  p.nozzle_mm = v.at("nozzle").get<double>();
+// Node gap within the nozzle, and ribs long enough that filaments which are not joined
+// stay a nozzle apart.
+void check_rib(const nlohmann::json& v, const MissingRibParams& p, std::vector<std::string>& problems) {
   const double d = p.nozzle_mm;
-  p.rib_mm = v.at("rib").get<double>();
-  p.angle_deg = v.at("angle").get<double>();
-  p.rows = v.at("rows").get<int>();
-  p.cols = v.at("cols").get<int>();
   const double theta = slicer::deg_to_rad(p.angle_deg);
-  p.node_gap_mm = v.contains("node-gap") ? v.at("node-gap").get<double>() : d;
   if (p.node_gap_mm > d + 1e-12) {
     problems.push_back(slicer::problem(kName, "node-gap", v.at("node-gap"),
                                        "must be in [0, nozzle] = [0, " + slicer::short_number(d) +
@@ -81,6 +68,26 @@ MissingRibParams missing_rib_params_from(const nlohmann::json& v) {
             " deg = max(nozzle / (cos - sin), nozzle / cos + node-gap / sqrt 2), so filaments that are not joined stay a nozzle apart",
         "mm"));
   }
+}
+
+}  // namespace
+
+MissingRibParams missing_rib_params_from(const nlohmann::json& v) {
+  std::vector<std::string> problems;
+  if (!v.contains("nozzle")) problems.push_back("missing-rib.nozzle: missing (required, > 0 mm)");
+  if (!v.contains("rib")) problems.push_back("missing-rib.rib: missing (required, > 0 mm)");
+  require_one_of(v, "height", "layers", problems);
+  if (!problems.empty()) throw InputError(problems);
+
+  MissingRibParams p;
+  p.nozzle_mm = v.at("nozzle").get<double>();
+  const double d = p.nozzle_mm;
+  p.rib_mm = v.at("rib").get<double>();
+  p.angle_deg = v.at("angle").get<double>();
+  p.rows = v.at("rows").get<int>();
+  p.cols = v.at("cols").get<int>();
+  p.node_gap_mm = v.contains("node-gap") ? v.at("node-gap").get<double>() : d;
+  check_rib(v, p, problems);
   p.layer_height_mm = v.contains("layer-height") ? v.at("layer-height").get<double>() : 0.8 * d;
   if (p.layer_height_mm < 0.5 * d - 1e-12 || p.layer_height_mm > d + 1e-12) {
     problems.push_back(slicer::problem(kName, "layer-height", v.at("layer-height"),

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "slicer/units.h"
+
 namespace strand::patterns {
 namespace {
 
@@ -35,7 +37,7 @@ std::vector<std::pair<double, double>> passes_through(const slicer::Stroke& s, c
   for (const auto& seg : s.segments) pts.push_back(seg.end_mm);
   const std::size_t n = pts.size() - 1;  // closed: pts[n] == pts[0]
   auto angle = [&](const Vec2& q) {
-    const double a = std::atan2(q.y() - v.y(), q.x() - v.x()) * 180.0 / M_PI;
+    const double a = std::atan2(q.y() - v.y(), q.x() - v.x()) * 180.0 / slicer::kPi;
     return a < 0 ? a + 360 : a;
   };
   std::vector<std::pair<double, double>> out;
