@@ -18,12 +18,6 @@ int RibNetwork::add_vertex(const Vec2& p_mm) {
 
 void RibNetwork::add_edge(int a, int b, slicer::Feature feature) { edges.push_back({a, b, feature}); }
 
-int RibNetwork::degree(int v) const {
-  int n = 0;
-  for (const auto& e : edges) n += (e.a == v) + (e.b == v);
-  return n;
-}
-
 namespace {
 
 // Edge end k belongs to edge k / 2; it sits at the edge's a (k even) or b (k odd) vertex.

@@ -21,7 +21,6 @@ struct RibNetwork {
 
   int add_vertex(const slicer::Vec2& p_mm);
   void add_edge(int a, int b, slicer::Feature feature);
-  int degree(int v) const;
 };
 
 // Closed strands covering every edge once. Every vertex must have even degree (throws
