@@ -1,6 +1,8 @@
 // The list of generators; add one line per design.
 #include "patterns/registry.h"
 
+#include "patterns/missing_rib.h"
+#include "patterns/reentrant.h"
 #include "patterns/scaffold.h"
 
 namespace strand::patterns {
@@ -9,6 +11,10 @@ const std::vector<GeneratorSpec>& generators() {
   static const std::vector<GeneratorSpec> kGenerators = {
       {"scaffold", "log-pile scaffold: one serpentine per layer, rotated by --angles",
        &scaffold_table, &scaffold_from_values},
+      {"missing-rib", "missing-rib auxetic lattice: nodes rotated by +/- --angle, one closed strand per layer",
+       &missing_rib_table, &missing_rib_from_values},
+      {"reentrant", "re-entrant honeycomb: bands joined into one serpentine strand per layer",
+       &reentrant_table, &reentrant_from_values},
   };
   return kGenerators;
 }
