@@ -6,25 +6,39 @@
 
 namespace strand::post {
 
-PointGrid::PointGrid(const std::vector<slicer::Vec2>& points) : points_(points) {
-  if (points.empty()) {
+namespace {
+
+std::vector<int> all_ids(std::size_t n) {
+  std::vector<int> ids(n);
+  for (std::size_t i = 0; i < n; ++i) ids[i] = static_cast<int>(i);
+  return ids;
+}
+
+}  // namespace
+
+PointGrid::PointGrid(const std::vector<slicer::Vec2>& points)
+    : PointGrid(points, all_ids(points.size())) {}
+
+PointGrid::PointGrid(const std::vector<slicer::Vec2>& points, const std::vector<int>& ids)
+    : points_(points) {
+  if (ids.empty()) {
     cells_.resize(1);
     return;
   }
-  slicer::Vec2 hi = points[0];
-  lo_ = points[0];
-  for (const auto& p : points) {
-    lo_ = lo_.cwiseMin(p);
-    hi = hi.cwiseMax(p);
+  slicer::Vec2 hi = points[ids[0]];
+  lo_ = hi;
+  for (int id : ids) {
+    lo_ = lo_.cwiseMin(points[id]);
+    hi = hi.cwiseMax(points[id]);
   }
   const slicer::Vec2 size = (hi - lo_).cwiseMax(slicer::Vec2(1e-9, 1e-9));
-  cell_ = std::max(std::sqrt(size.x() * size.y() * 2.0 / static_cast<double>(points.size())),
+  cell_ = std::max(std::sqrt(size.x() * size.y() * 2.0 / static_cast<double>(ids.size())),
                    std::max(size.x(), size.y()) / 4096.0);
   nx_ = std::max(1, static_cast<int>(size.x() / cell_) + 1);
   ny_ = std::max(1, static_cast<int>(size.y() / cell_) + 1);
   cells_.resize(static_cast<std::size_t>(nx_) * ny_);
-  for (int i = 0; i < static_cast<int>(points.size()); ++i) {
-    cells_[static_cast<std::size_t>(cell_y(points[i].y())) * nx_ + cell_x(points[i].x())].push_back(i);
+  for (int id : ids) {
+    cells_[static_cast<std::size_t>(cell_y(points[id].y())) * nx_ + cell_x(points[id].x())].push_back(id);
   }
 }
 

@@ -14,6 +14,9 @@ class PointGrid {
  public:
   // Cell size chosen for about two points per cell.
   explicit PointGrid(const std::vector<slicer::Vec2>& points);
+  // A grid over only the listed ids of `points` (ids keep their meaning); used to rebuild a
+  // sparser grid when most points are gone, so searches stop crossing empty cells.
+  PointGrid(const std::vector<slicer::Vec2>& points, const std::vector<int>& ids);
   // Nearest point for which alive(id) holds, or -1; ties go to the smaller id.
   template <class Alive>
   int nearest(const slicer::Vec2& q, Alive alive) const;
