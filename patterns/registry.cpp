@@ -1,7 +1,9 @@
 // The list of generators; add one line per design.
 #include "patterns/registry.h"
 
+#include "patterns/hexachiral.h"
 #include "patterns/scaffold.h"
+#include "patterns/tetrachiral.h"
 
 namespace strand::patterns {
 
@@ -9,6 +11,10 @@ const std::vector<GeneratorSpec>& generators() {
   static const std::vector<GeneratorSpec> kGenerators = {
       {"scaffold", "log-pile scaffold: one serpentine per layer, rotated by --angles",
        &scaffold_table, &scaffold_from_values},
+      {"tetrachiral", "tetrachiral tensile specimen: one non-crossing strand per layer, grips at both ends",
+       &tetrachiral_table, &tetrachiral_from_values},
+      {"hexachiral", "hexachiral tensile specimen: one non-crossing strand per layer, grips at both ends",
+       &hexachiral_table, &hexachiral_from_values},
   };
   return kGenerators;
 }
