@@ -169,10 +169,9 @@ void add_edge(Built& b, int from, int to, double a_from, double a_to, EdgePath p
   b.paths.push_back(std::move(path));
 }
 
-// Extent of a polygon along the chord k -> k + 1, from the chord's start.
-std::pair<double, double> extent_along(const std::vector<Vec2>& poly, int k) {
-  const Vec2 p0 = poly[static_cast<std::size_t>(k)];
-  const Vec2 u = (poly[(static_cast<std::size_t>(k) + 1) % poly.size()] - p0).normalized();
+// Extent of `poly` along the chord p0 -> p1, measured from p0.
+std::pair<double, double> extent_along(const std::vector<Vec2>& poly, const Vec2& p0, const Vec2& p1) {
+  const Vec2 u = (p1 - p0).normalized();
   double lo = 1e300, hi = -1e300;
   for (const Vec2& p : poly) lo = std::min(lo, (p - p0).dot(u)), hi = std::max(hi, (p - p0).dot(u));
   return {lo, hi};
@@ -197,10 +196,10 @@ void add_frame(Built& b, const ChiralLattice& l, const NodeRings& rings, const B
       if (k == kb) break;
       for (int side = 0; side < 2; ++side) {
         if (k != border.grip_chords[side] || border.grip_pair[side] != i || spec.grip_mm <= 0) continue;
-        const auto [x_lo, x_hi] = extent_along(border.poly[1], k);
+        const Vec2 p0 = poly[static_cast<std::size_t>(k)], p1 = poly[static_cast<std::size_t>((k + 1) % nb)];
+        const auto [x_lo, x_hi] = extent_along(border.poly[0], p0, p1);  // grips as wide as the frame
         Vec2 mark;
-        add_grip(path, poly[static_cast<std::size_t>(k)], poly[static_cast<std::size_t>((k + 1) % nb)],
-                 x_lo, x_hi, spec.nozzle_mm, spec.grip_mm, mark);
+        add_grip(path, p0, p1, x_lo, x_hi, spec.nozzle_mm, spec.grip_mm, mark);
         path.pts.pop_back(), path.feats.pop_back();  // the loop adds the chord's end
         if (side == 0) b.mark = mark, b.grip_edge = static_cast<int>(b.paths.size());
       }
