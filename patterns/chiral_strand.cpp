@@ -253,24 +253,58 @@ double visit_sweep(const std::vector<double>& angles, double in, double out) {
   return gap;
 }
 
-slicer::Stroke assemble(const Built& b, const ChiralLattice& l, const NodeRings& rings,
-                        std::vector<CircuitStep> steps) {
+struct Visit {
+  int vertex = 0;
+  double in_rad = 0, sweep_rad = 0, extend_rad = 0;
+};
+
+// Visits of the circuit: where each arrives, its sector, and how far its inner passes may
+// reach back beyond the entry into the empty gap there: up to the next end when that end
+// is an exit, half way when it is another visit's entry.
+std::vector<Visit> visits_of(const Built& b, const NodeRings& rings, const std::vector<CircuitStep>& steps) {
   const auto& g = b.graph;
-  auto it = std::find_if(steps.begin(), steps.end(), [&](const CircuitStep& s) { return s.edge == b.grip_edge; });
-  if (it != steps.end()) std::rotate(steps.begin(), it, steps.end());
-  slicer::Stroke s;
+  std::vector<Visit> visits;
+  std::vector<std::vector<double>> entries(b.end_angles.size());
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const auto e = static_cast<std::size_t>(steps[i].edge);
-    const EdgePath p = oriented(b.paths[e], steps[i].forward);
+    const auto ne = static_cast<std::size_t>(steps[(i + 1) % steps.size()].edge);
+    Visit v;
+    v.vertex = steps[i].forward ? g.edge_to[e] : g.edge_from[e];
+    v.in_rad = steps[i].forward ? g.angle_to_rad[e] : g.angle_from_rad[e];
+    const double out = steps[(i + 1) % steps.size()].forward ? g.angle_from_rad[ne] : g.angle_to_rad[ne];
+    v.sweep_rad = visit_sweep(b.end_angles[static_cast<std::size_t>(v.vertex)], v.in_rad, out);
+    entries[static_cast<std::size_t>(v.vertex)].push_back(v.in_rad);
+    visits.push_back(v);
+  }
+  const double h = rings.attach_mm - rings.pass_mm.back();
+  for (Visit& v : visits) {
+    const double back = v.sweep_rad >= 0 ? -1.0 : 1.0;
+    double gap = slicer::kTwoPi, next = v.in_rad;
+    for (double a : b.end_angles[static_cast<std::size_t>(v.vertex)]) {
+      const double dist = wrap_2pi(back * (a - v.in_rad));
+      if (dist > 1e-12 && dist < gap) gap = dist, next = a;
+    }
+    const auto& ins = entries[static_cast<std::size_t>(v.vertex)];
+    const bool shared = std::find(ins.begin(), ins.end(), next) != ins.end();
+    const double margin = std::min(h / rings.pass_mm.front(), gap / 4);
+    v.extend_rad = std::max(0.0, shared ? (gap - margin) / 2 : gap - margin);
+  }
+  return visits;
+}
+
+slicer::Stroke assemble(const Built& b, const ChiralLattice& l, const NodeRings& rings,
+                        std::vector<CircuitStep> steps) {
+  auto it = std::find_if(steps.begin(), steps.end(), [&](const CircuitStep& s) { return s.edge == b.grip_edge; });
+  if (it != steps.end()) std::rotate(steps.begin(), it, steps.end());
+  const std::vector<Visit> visits = visits_of(b, rings, steps);
+  slicer::Stroke s;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const EdgePath p = oriented(b.paths[static_cast<std::size_t>(steps[i].edge)], steps[i].forward);
     if (i == 0) s.start_mm = p.pts.front();
     for (std::size_t k = 0; k < p.feats.size(); ++k) s.segments.push_back(slicer::line_to(p.pts[k + 1], p.feats[k]));
-    const CircuitStep& next = steps[(i + 1) % steps.size()];
-    const auto ne = static_cast<std::size_t>(next.edge);
-    const int v = steps[i].forward ? g.edge_to[e] : g.edge_from[e];
-    const double in = steps[i].forward ? g.angle_to_rad[e] : g.angle_from_rad[e];
-    const double out = next.forward ? g.angle_from_rad[ne] : g.angle_to_rad[ne];
-    const auto& angles = b.end_angles[static_cast<std::size_t>(v)];
-    for (const Segment& seg : node_hairpin(l.nodes[static_cast<std::size_t>(v)], rings, in, visit_sweep(angles, in, out))) {
+    const Visit& v = visits[i];
+    for (const Segment& seg : node_hairpin(l.nodes[static_cast<std::size_t>(v.vertex)], rings, v.in_rad,
+                                           v.sweep_rad, v.extend_rad)) {
       s.segments.push_back(seg);
     }
   }
@@ -290,7 +324,7 @@ void start_at(slicer::Stroke& s, const Vec2& mark) {
 }  // namespace
 
 std::vector<Segment> node_hairpin(const Vec2& c, const NodeRings& rings, double entry_rad,
-                                  double sweep_rad) {
+                                  double sweep_rad, double extend_rad) {
   const auto& rho = rings.pass_mm;
   const int passes = static_cast<int>(rho.size());
   const double sign = sweep_rad >= 0 ? 1.0 : -1.0;
@@ -301,7 +335,8 @@ std::vector<Segment> node_hairpin(const Vec2& c, const NodeRings& rings, double 
   out.push_back(slicer::line_to(c + rho.back() * unit(entry_rad), Feature::Node));
   for (int j = passes - 1; j >= 0; --j) {
     const int leg = passes - 1 - j;  // 0 = outermost; even legs run towards the exit
-    const double end = j == 0 ? exit_rad : (leg % 2 == 0 ? exit_rad - margin : entry_rad + margin);
+    const double back = passes > 1 && extend_rad > 0 ? -sign * extend_rad : margin;  // inner legs turn here
+    const double end = j == 0 ? exit_rad : (leg % 2 == 0 ? exit_rad - margin : entry_rad + back);
     const bool ccw = (leg % 2 == 0) == (sign > 0);
     out.push_back(slicer::arc_to(c + rho[static_cast<std::size_t>(j)] * unit(end), c, ccw, Feature::Node));
     if (j > 0) out.push_back(slicer::line_to(c + rho[static_cast<std::size_t>(j - 1)] * unit(end), Feature::Node));

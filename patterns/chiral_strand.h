@@ -23,9 +23,12 @@ std::vector<slicer::Stroke> chiral_layer(const ChiralLattice& lattice, const Nod
                                          const StrandSpec& spec);
 
 // The segments of one node visit: arrive at `entry_rad` on the attach circle, pass
-// through the sector towards `exit_rad` (sweep sign `ccw`), leave at `exit_rad`.
-// Passes alternate direction from the outermost to the innermost, which ends at the exit.
+// through the sector of signed `sweep_rad`, leave at entry + sweep. Passes alternate
+// direction from the outermost to the innermost, which ends at the exit; all but the
+// outermost may turn `extend_rad` back beyond the entry (into an empty gap), else they
+// turn a small margin inside the sector.
 std::vector<slicer::Segment> node_hairpin(const slicer::Vec2& centre, const NodeRings& rings,
-                                          double entry_rad, double sweep_rad);
+                                          double entry_rad, double sweep_rad,
+                                          double extend_rad = 0.0);
 
 }  // namespace strand::patterns
