@@ -177,6 +177,35 @@ std::pair<double, double> extent_along(const std::vector<Vec2>& poly, const Vec2
   return {lo, hi};
 }
 
+// How a frame edge leaves node `c` for border point `p`: its end angle on the attach
+// circle and the connector points out to (not including) p. Ligaments leave their tangent
+// points counter-clockwise, so a straight radial connector is safe unless a ligament's
+// tangent point lies just clockwise of it; then the connector leaves a little clockwise of
+// that tangent point, steps out to the frame radius and runs to p on the far side of the
+// ligament's line.
+struct FrameAttach {
+  double angle_rad = 0;
+  std::vector<Vec2> pts;
+};
+FrameAttach frame_attach(const Vec2& c, const std::vector<double>& ligament_angles,
+                         const NodeRings& rings, const Vec2& p) {
+  const double theta = slicer::angle_of(c, p);
+  double closest = slicer::kTwoPi, tau = theta;
+  for (double a : ligament_angles) {
+    const double cw = wrap_2pi(theta - a);
+    if (cw < closest) closest = cw, tau = a;
+  }
+  FrameAttach f;
+  if (closest >= std::acos(rings.attach_mm / (p - c).norm())) {
+    f.angle_rad = theta;
+    f.pts = {c + rings.attach_mm * unit(theta)};
+    return f;
+  }
+  f.angle_rad = tau - std::acos(rings.attach_mm / rings.frame_mm) / 2;
+  f.pts = {c + rings.attach_mm * unit(f.angle_rad), c + rings.frame_mm * unit(f.angle_rad)};
+  return f;
+}
+
 void add_frame(Built& b, const ChiralLattice& l, const NodeRings& rings, const Border& border,
                const StrandSpec& spec) {
   const int nb = static_cast<int>(l.boundary.size());
@@ -187,10 +216,11 @@ void add_frame(Built& b, const ChiralLattice& l, const NodeRings& rings, const B
     const int kb = border.odd_positions[static_cast<std::size_t>(fp.b)];
     const int va = l.boundary[static_cast<std::size_t>(ka)], vb = l.boundary[static_cast<std::size_t>(kb)];
     const Vec2 ca = l.nodes[static_cast<std::size_t>(va)], cb = l.nodes[static_cast<std::size_t>(vb)];
-    const double psi_a = slicer::angle_of(ca, poly[static_cast<std::size_t>(ka)]);
-    const double psi_b = slicer::angle_of(cb, poly[static_cast<std::size_t>(kb)]);
+    const FrameAttach fa = frame_attach(ca, b.end_angles[static_cast<std::size_t>(va)], rings, poly[static_cast<std::size_t>(ka)]);
+    const FrameAttach fb = frame_attach(cb, b.end_angles[static_cast<std::size_t>(vb)], rings, poly[static_cast<std::size_t>(kb)]);
     EdgePath path;
-    path.pts.push_back(ca + rings.attach_mm * unit(psi_a));
+    path.pts.push_back(fa.pts.front());
+    if (fa.pts.size() > 1) path.add(fa.pts.back(), Feature::Frame);
     for (int k = ka;; k = (k + 1) % nb) {
       path.add(poly[static_cast<std::size_t>(k)], Feature::Frame);
       if (k == kb) break;
@@ -204,8 +234,8 @@ void add_frame(Built& b, const ChiralLattice& l, const NodeRings& rings, const B
         if (side == 0) b.mark = mark, b.grip_edge = static_cast<int>(b.paths.size());
       }
     }
-    path.add(cb + rings.attach_mm * unit(psi_b), Feature::Frame);
-    add_edge(b, va, vb, psi_a, psi_b, std::move(path));
+    for (auto it = fb.pts.rbegin(); it != fb.pts.rend(); ++it) path.add(*it, Feature::Frame);
+    add_edge(b, va, vb, fa.angle_rad, fb.angle_rad, std::move(path));
   }
 }
 

@@ -34,7 +34,7 @@ inline Emitted emit(const slicer::ParamTable& table, slicer::Toolpath (*make)(co
 }
 
 // A random parameter set: nozzle, layer height, passes, core and grip drawn first, then a
-// cell between the generator's limit and twice it, and a lattice that fits the delta.
+// cell between the generator's limit and three times it, and a lattice that fits the delta.
 inline nlohmann::json random_params(std::mt19937& rng, double (*min_cell)(const nlohmann::json&)) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const double d = 0.2 + 0.6 * unit(rng);
@@ -45,7 +45,7 @@ inline nlohmann::json random_params(std::mt19937& rng, double (*min_cell)(const 
                       {"grip", unit(rng) < 0.2 ? 0.0 : 2 * d + 8 * unit(rng)},
                       {"layers", 2}};
   const double lo = min_cell(p);
-  p["cell"] = std::round((lo + lo * unit(rng)) * 100.0) / 100.0 + 0.01;
+  p["cell"] = std::round((lo + 2 * lo * unit(rng)) * 100.0) / 100.0 + 0.01;
   const double cell = p["cell"].get<double>();
   const int max_cells = std::max(2, static_cast<int>(70.0 / cell));
   p["cols"] = 2 + static_cast<int>(rng() % static_cast<unsigned>(std::min(6, max_cells) - 1));
