@@ -95,7 +95,8 @@ double chiral_min_cell_mm(ChiralKind kind, const ChiralParams& p) {
 slicer::Toolpath generate_chiral(ChiralKind kind, const ChiralParams& p) {
   const NodeRings rings = rings_of(p);
   const ChiralLattice lattice = lattice_maker(kind)(p.cols, p.rows, p.cell_mm);
-  const std::vector<slicer::Stroke> strokes = chiral_layer(lattice, rings, {p.nozzle_mm, p.layer_height_mm, p.grip_mm});
+  const std::vector<slicer::Stroke> strokes =
+      chiral_layer(lattice, rings, {p.nozzle_mm, p.layer_height_mm, p.grip_mm});
   slicer::Toolpath t;
   t.generator = kind == ChiralKind::Tetra ? "tetrachiral" : "hexachiral";
   for (int k = 0; k < p.layers; ++k) {

@@ -70,8 +70,8 @@ struct Border {
   std::vector<Vec2> poly[2];
   std::vector<int> odd_positions;  // boundary positions of odd-degree nodes
   std::vector<FramePair> pairs;
-  int grip_chords[2] = {-1, -1};   // boundary positions k of chords k -> k + 1
-  int grip_pair[2] = {-1, -1};     // the outermost pair covering each grip chord
+  int grip_chords[2] = {-1, -1};  // boundary positions k of chords k -> k + 1
+  int grip_pair[2] = {-1, -1};    // the outermost pair covering each grip chord
 };
 
 // Position of chord k among the odd nodes: it lies between odd j and j + 1 (cyclic).
@@ -89,7 +89,8 @@ int pick_chord(const Border& b, int first, int last, int parity) {
   int pick = -1;
   for (int k = first; k < last; ++k) {
     if (parity >= 0 && (odd_index_before(b, k) - parity + m) % 2 != 0) continue;
-    if (pick < 0 || std::abs(2 * k + 1 - first - last) < std::abs(2 * pick + 1 - first - last)) pick = k;
+    if (pick < 0 || std::abs(2 * k + 1 - first - last) < std::abs(2 * pick + 1 - first - last))
+      pick = k;
   }
   return pick;
 }
@@ -97,7 +98,8 @@ int pick_chord(const Border& b, int first, int last, int parity) {
 // Pairs odd nodes so that a frame edge covers one chord of the bottom and of the top row
 // (the grips): consecutive pairs when one parity serves both, else the top chord's
 // neighbours are re-paired as an inner pair plus an outer pair nested over it.
-void choose_frame(Border& b, int bottom_first, int bottom_last, int top_first, int top_last, int nb) {
+void choose_frame(Border& b, int bottom_first, int bottom_last, int top_first, int top_last,
+                  int nb) {
   const int m = static_cast<int>(b.odd_positions.size());
   int offset = -1;
   for (int o = 0; o < 2 && offset < 0; ++o) {
@@ -123,11 +125,14 @@ void choose_frame(Border& b, int bottom_first, int bottom_last, int top_first, i
   }
   for (int side = 0; side < 2; ++side) {
     for (int i = 0; i < static_cast<int>(b.pairs.size()); ++i) {
-      const int ka = b.odd_positions[static_cast<std::size_t>(b.pairs[static_cast<std::size_t>(i)].a)];
-      const int kb = b.odd_positions[static_cast<std::size_t>(b.pairs[static_cast<std::size_t>(i)].b)];
+      const int ka =
+          b.odd_positions[static_cast<std::size_t>(b.pairs[static_cast<std::size_t>(i)].a)];
+      const int kb =
+          b.odd_positions[static_cast<std::size_t>(b.pairs[static_cast<std::size_t>(i)].b)];
       const bool covers = (b.grip_chords[side] - ka + nb) % nb < (kb - ka + nb) % nb;
       const int best = b.grip_pair[side];
-      if (covers && (best < 0 || b.pairs[static_cast<std::size_t>(i)].level > b.pairs[static_cast<std::size_t>(best)].level)) {
+      if (covers && (best < 0 || b.pairs[static_cast<std::size_t>(i)].level >
+                                     b.pairs[static_cast<std::size_t>(best)].level)) {
         b.grip_pair[side] = i;
       }
     }
@@ -135,7 +140,8 @@ void choose_frame(Border& b, int bottom_first, int bottom_last, int top_first, i
 }
 
 // Extent of `poly` along the chord p0 -> p1, measured from p0.
-std::pair<double, double> extent_along(const std::vector<Vec2>& poly, const Vec2& p0, const Vec2& p1) {
+std::pair<double, double> extent_along(const std::vector<Vec2>& poly, const Vec2& p0,
+                                       const Vec2& p1) {
   const Vec2 u = (p1 - p0).normalized();
   double lo = 1e300, hi = -1e300;
   for (const Vec2& p : poly) lo = std::min(lo, (p - p0).dot(u)), hi = std::max(hi, (p - p0).dot(u));
@@ -172,17 +178,22 @@ FrameAttach frame_attach(const Vec2& c, const std::vector<double>& ligament_angl
 }
 
 void add_frame(ChiralFrame& b, const ChiralLattice& l, const NodeRings& rings, const Border& border,
-               const std::vector<std::vector<double>>& end_angles, double nozzle_mm, double grip_mm) {
+               const std::vector<std::vector<double>>& end_angles, double nozzle_mm,
+               double grip_mm) {
   const int nb = static_cast<int>(l.boundary.size());
   for (int i = 0; i < static_cast<int>(border.pairs.size()); ++i) {
     const FramePair& fp = border.pairs[static_cast<std::size_t>(i)];
     const auto& poly = border.poly[fp.level];
     const int ka = border.odd_positions[static_cast<std::size_t>(fp.a)];
     const int kb = border.odd_positions[static_cast<std::size_t>(fp.b)];
-    const int va = l.boundary[static_cast<std::size_t>(ka)], vb = l.boundary[static_cast<std::size_t>(kb)];
-    const Vec2 ca = l.nodes[static_cast<std::size_t>(va)], cb = l.nodes[static_cast<std::size_t>(vb)];
-    const FrameAttach fa = frame_attach(ca, end_angles[static_cast<std::size_t>(va)], rings, poly[static_cast<std::size_t>(ka)]);
-    const FrameAttach fb = frame_attach(cb, end_angles[static_cast<std::size_t>(vb)], rings, poly[static_cast<std::size_t>(kb)]);
+    const int va = l.boundary[static_cast<std::size_t>(ka)],
+              vb = l.boundary[static_cast<std::size_t>(kb)];
+    const Vec2 ca = l.nodes[static_cast<std::size_t>(va)],
+               cb = l.nodes[static_cast<std::size_t>(vb)];
+    const FrameAttach fa = frame_attach(ca, end_angles[static_cast<std::size_t>(va)], rings,
+                                        poly[static_cast<std::size_t>(ka)]);
+    const FrameAttach fb = frame_attach(cb, end_angles[static_cast<std::size_t>(vb)], rings,
+                                        poly[static_cast<std::size_t>(kb)]);
     EdgePath path;
     path.pts.push_back(fa.pts.front());
     if (fa.pts.size() > 1) path.add(fa.pts.back(), Feature::Frame);
@@ -191,8 +202,10 @@ void add_frame(ChiralFrame& b, const ChiralLattice& l, const NodeRings& rings, c
       if (k == kb) break;
       for (int side = 0; side < 2; ++side) {
         if (k != border.grip_chords[side] || border.grip_pair[side] != i || grip_mm <= 0) continue;
-        const Vec2 p0 = poly[static_cast<std::size_t>(k)], p1 = poly[static_cast<std::size_t>((k + 1) % nb)];
-        const auto [x_lo, x_hi] = extent_along(border.poly[0], p0, p1);  // grips as wide as the frame
+        const Vec2 p0 = poly[static_cast<std::size_t>(k)],
+                   p1 = poly[static_cast<std::size_t>((k + 1) % nb)];
+        const auto [x_lo, x_hi] =
+            extent_along(border.poly[0], p0, p1);  // grips as wide as the frame
         Vec2 mark;
         add_grip(path, p0, p1, x_lo, x_hi, nozzle_mm, grip_mm, mark);
         path.pts.pop_back(), path.feats.pop_back();  // the loop adds the chord's end
@@ -214,15 +227,23 @@ ChiralFrame chiral_frame(const ChiralLattice& l, const NodeRings& rings,
   border.poly[0] = border_polygon(l, rings.frame_mm);
   border.poly[1] = border_polygon(l, 2 * rings.frame_mm - rings.attach_mm);
   for (int k = 0; k < static_cast<int>(l.boundary.size()); ++k) {
-    if (end_angles[static_cast<std::size_t>(l.boundary[static_cast<std::size_t>(k)])].size() % 2 != 0) border.odd_positions.push_back(k);
+    if (end_angles[static_cast<std::size_t>(l.boundary[static_cast<std::size_t>(k)])].size() % 2 !=
+        0)
+      border.odd_positions.push_back(k);
   }
-  if (border.odd_positions.empty()) throw std::logic_error("chiral lattice without odd boundary nodes");
+  if (border.odd_positions.empty())
+    throw std::logic_error("chiral lattice without odd boundary nodes");
   // bottom row: boundary positions 0..cols; top row: the run of nodes with the largest y
   const int nb = static_cast<int>(l.boundary.size());
   int bottom_last = 0, top_first = 0;
-  while (bottom_last + 1 < nb && l.nodes[static_cast<std::size_t>(l.boundary[static_cast<std::size_t>(bottom_last + 1)])].y() == l.nodes[static_cast<std::size_t>(l.boundary[0])].y()) ++bottom_last;
+  while (bottom_last + 1 < nb &&
+         l.nodes[static_cast<std::size_t>(l.boundary[static_cast<std::size_t>(bottom_last + 1)])]
+                 .y() == l.nodes[static_cast<std::size_t>(l.boundary[0])].y())
+    ++bottom_last;
   const double top_y = l.nodes.back().y();
-  while (l.nodes[static_cast<std::size_t>(l.boundary[static_cast<std::size_t>(top_first)])].y() != top_y) ++top_first;
+  while (l.nodes[static_cast<std::size_t>(l.boundary[static_cast<std::size_t>(top_first)])].y() !=
+         top_y)
+    ++top_first;
   choose_frame(border, 0, bottom_last, top_first, top_first + bottom_last, nb);
   add_frame(b, l, rings, border, end_angles, nozzle_mm, grip_mm);
   return b;

@@ -25,7 +25,7 @@ struct FrameEdge {
 
 struct ChiralFrame {
   std::vector<FrameEdge> edges;
-  int grip_edge = -1;                    // the edge holding the bottom grip, -1 = none
+  int grip_edge = -1;                        // the edge holding the bottom grip, -1 = none
   slicer::Vec2 mark = slicer::Vec2::Zero();  // start of the bottom grip's return line
 };
 

@@ -39,7 +39,8 @@ std::vector<int> grid_boundary(int cols, int rows) {
 double segment_distance(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
   if (slicer::segment_contact(a, b, c, d, 0.0) == slicer::Contact::Crossing) return 0.0;
   return std::min({slicer::point_segment_distance(a, c, d), slicer::point_segment_distance(b, c, d),
-                   slicer::point_segment_distance(c, a, b), slicer::point_segment_distance(d, a, b)});
+                   slicer::point_segment_distance(c, a, b),
+                   slicer::point_segment_distance(d, a, b)});
 }
 
 }  // namespace
@@ -84,7 +85,8 @@ ChiralLattice hexachiral_lattice(int cols, int rows, double cell_mm) {
 
 NodeRings node_rings(double core_mm, double nozzle_mm, double layer_height_mm, int passes) {
   NodeRings r;
-  for (int k = 0; k < passes; ++k) r.pass_mm.push_back(core_mm / 2 + nozzle_mm / 2 + k * layer_height_mm);
+  for (int k = 0; k < passes; ++k)
+    r.pass_mm.push_back(core_mm / 2 + nozzle_mm / 2 + k * layer_height_mm);
   r.middle_mm = core_mm / 2 + nozzle_mm / 2 + (passes - 1) / 2.0 * layer_height_mm;
   r.attach_mm = r.pass_mm.back() + layer_height_mm;
   r.frame_mm = r.attach_mm + layer_height_mm;

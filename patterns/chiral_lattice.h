@@ -39,8 +39,7 @@ NodeRings node_rings(double core_mm, double nozzle_mm, double layer_height_mm, i
 // Internal tangent of two circles of `radius_mm` around a and b: the ligament from a to
 // b. Leaving a it runs counter-clockwise around a (one handedness for the whole lattice).
 // Returns the tangent points {on a, on b}.
-std::pair<slicer::Vec2, slicer::Vec2> ligament_tangent(const slicer::Vec2& a,
-                                                       const slicer::Vec2& b,
+std::pair<slicer::Vec2, slicer::Vec2> ligament_tangent(const slicer::Vec2& a, const slicer::Vec2& b,
                                                        double radius_mm);
 // Ligament angle to the centre line, sin(alpha) = 2 radius / cell.
 double ligament_angle_rad(double cell_mm, double radius_mm);

@@ -67,7 +67,8 @@ Built build_graph(const ChiralLattice& l, const NodeRings& rings, const StrandSp
   ChiralFrame frame = chiral_frame(l, rings, b.end_angles, spec.nozzle_mm, spec.grip_mm);
   if (frame.grip_edge >= 0) b.grip_edge = static_cast<int>(b.paths.size()) + frame.grip_edge;
   b.mark = frame.mark;
-  for (FrameEdge& e : frame.edges) add_edge(b, e.from, e.to, e.angle_from_rad, e.angle_to_rad, std::move(e.path));
+  for (FrameEdge& e : frame.edges)
+    add_edge(b, e.from, e.to, e.angle_from_rad, e.angle_to_rad, std::move(e.path));
   return b;
 }
 
@@ -90,7 +91,8 @@ struct Visit {
 // Visits of the circuit: where each arrives, its sector, and how far its inner passes may
 // reach back beyond the entry into the empty gap there: up to the next end when that end
 // is an exit, half way when it is another visit's entry.
-std::vector<Visit> visits_of(const Built& b, const NodeRings& rings, const std::vector<CircuitStep>& steps) {
+std::vector<Visit> visits_of(const Built& b, const NodeRings& rings,
+                             const std::vector<CircuitStep>& steps) {
   const auto& g = b.graph;
   std::vector<Visit> visits;
   std::vector<std::vector<double>> entries(b.end_angles.size());
@@ -100,7 +102,8 @@ std::vector<Visit> visits_of(const Built& b, const NodeRings& rings, const std::
     Visit v;
     v.vertex = steps[i].forward ? g.edge_to[e] : g.edge_from[e];
     v.in_rad = steps[i].forward ? g.angle_to_rad[e] : g.angle_from_rad[e];
-    const double out = steps[(i + 1) % steps.size()].forward ? g.angle_from_rad[ne] : g.angle_to_rad[ne];
+    const double out =
+        steps[(i + 1) % steps.size()].forward ? g.angle_from_rad[ne] : g.angle_to_rad[ne];
     v.sweep_rad = visit_sweep(b.end_angles[static_cast<std::size_t>(v.vertex)], v.in_rad, out);
     entries[static_cast<std::size_t>(v.vertex)].push_back(v.in_rad);
     visits.push_back(v);
@@ -123,17 +126,19 @@ std::vector<Visit> visits_of(const Built& b, const NodeRings& rings, const std::
 
 slicer::Stroke assemble(const Built& b, const ChiralLattice& l, const NodeRings& rings,
                         std::vector<CircuitStep> steps) {
-  auto it = std::find_if(steps.begin(), steps.end(), [&](const CircuitStep& s) { return s.edge == b.grip_edge; });
+  auto it = std::find_if(steps.begin(), steps.end(),
+                         [&](const CircuitStep& s) { return s.edge == b.grip_edge; });
   if (it != steps.end()) std::rotate(steps.begin(), it, steps.end());
   const std::vector<Visit> visits = visits_of(b, rings, steps);
   slicer::Stroke s;
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const EdgePath p = oriented(b.paths[static_cast<std::size_t>(steps[i].edge)], steps[i].forward);
     if (i == 0) s.start_mm = p.pts.front();
-    for (std::size_t k = 0; k < p.feats.size(); ++k) s.segments.push_back(slicer::line_to(p.pts[k + 1], p.feats[k]));
+    for (std::size_t k = 0; k < p.feats.size(); ++k)
+      s.segments.push_back(slicer::line_to(p.pts[k + 1], p.feats[k]));
     const Visit& v = visits[i];
-    for (const Segment& seg : node_hairpin(l.nodes[static_cast<std::size_t>(v.vertex)], rings, v.in_rad,
-                                           v.sweep_rad, v.extend_rad)) {
+    for (const Segment& seg : node_hairpin(l.nodes[static_cast<std::size_t>(v.vertex)], rings,
+                                           v.in_rad, v.sweep_rad, v.extend_rad)) {
       s.segments.push_back(seg);
     }
   }
@@ -144,7 +149,8 @@ slicer::Stroke assemble(const Built& b, const ChiralLattice& l, const NodeRings&
 void start_at(slicer::Stroke& s, const Vec2& mark) {
   for (std::size_t k = 0; k < s.segments.size(); ++k) {
     if ((s.segments[k].end_mm - mark).norm() > 1e-9) continue;
-    std::rotate(s.segments.begin(), s.segments.begin() + static_cast<long>(k + 1), s.segments.end());
+    std::rotate(s.segments.begin(), s.segments.begin() + static_cast<long>(k + 1),
+                s.segments.end());
     s.start_mm = s.segments.back().end_mm;
     return;
   }
@@ -164,11 +170,15 @@ std::vector<Segment> node_hairpin(const Vec2& c, const NodeRings& rings, double 
   out.push_back(slicer::line_to(c + rho.back() * unit(entry_rad), Feature::Node));
   for (int j = passes - 1; j >= 0; --j) {
     const int leg = passes - 1 - j;  // 0 = outermost; even legs run towards the exit
-    const double back = passes > 1 && extend_rad > 0 ? -sign * extend_rad : margin;  // inner legs turn here
+    const double back =
+        passes > 1 && extend_rad > 0 ? -sign * extend_rad : margin;  // inner legs turn here
     const double end = j == 0 ? exit_rad : (leg % 2 == 0 ? exit_rad - margin : entry_rad + back);
     const bool ccw = (leg % 2 == 0) == (sign > 0);
-    out.push_back(slicer::arc_to(c + rho[static_cast<std::size_t>(j)] * unit(end), c, ccw, Feature::Node));
-    if (j > 0) out.push_back(slicer::line_to(c + rho[static_cast<std::size_t>(j - 1)] * unit(end), Feature::Node));
+    out.push_back(
+        slicer::arc_to(c + rho[static_cast<std::size_t>(j)] * unit(end), c, ccw, Feature::Node));
+    if (j > 0)
+      out.push_back(
+          slicer::line_to(c + rho[static_cast<std::size_t>(j - 1)] * unit(end), Feature::Node));
   }
   out.push_back(slicer::line_to(c + rings.attach_mm * unit(exit_rad), Feature::Node));
   return out;

@@ -36,9 +36,8 @@ class Pairing {
       };
       auto& list = ends_[v];
       if (list.size() % 2 != 0) throw std::logic_error("noncrossing_circuits: odd vertex degree");
-      std::sort(list.begin(), list.end(), [&](int a, int b) {
-        return angle(a) != angle(b) ? angle(a) < angle(b) : a < b;
-      });
+      std::sort(list.begin(), list.end(),
+                [&](int a, int b) { return angle(a) != angle(b) ? angle(a) < angle(b) : a < b; });
       for (std::size_t k = 0; k < list.size(); ++k) {
         pos_[static_cast<std::size_t>(list[k])] = static_cast<int>(k);
         vertex_[static_cast<std::size_t>(list[k])] = static_cast<int>(v);
@@ -99,7 +98,8 @@ std::vector<std::vector<CircuitStep>> noncrossing_circuits(const PlaneGraph& g) 
       if (p.degree(v) < 4) continue;
       const auto& ends = p.ends(v);
       const bool mixed = std::any_of(ends.begin(), ends.end(), [&](int end) {
-        return label[static_cast<std::size_t>(end / 2)] != label[static_cast<std::size_t>(ends[0] / 2)];
+        return label[static_cast<std::size_t>(end / 2)] !=
+               label[static_cast<std::size_t>(ends[0] / 2)];
       });
       if (!mixed) continue;
       p.flip(v);

@@ -10,7 +10,7 @@ namespace strand::patterns {
 // A plane graph given by its edges and the angle at which each edge end leaves its vertex.
 struct PlaneGraph {
   int vertex_count = 0;
-  std::vector<int> edge_from, edge_to;            // vertex indices
+  std::vector<int> edge_from, edge_to;               // vertex indices
   std::vector<double> angle_from_rad, angle_to_rad;  // direction of the end at that vertex
   int add_edge(int from, int to, double angle_from_rad, double angle_to_rad);
 };

@@ -3,6 +3,8 @@
 
 namespace strand::patterns {
 
-slicer::Toolpath generate_hexachiral(const ChiralParams& p) { return generate_chiral(ChiralKind::Hexa, p); }
+slicer::Toolpath generate_hexachiral(const ChiralParams& p) {
+  return generate_chiral(ChiralKind::Hexa, p);
+}
 
 }  // namespace strand::patterns

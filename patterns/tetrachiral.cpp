@@ -16,7 +16,8 @@ double tetrachiral_thesis_porosity(const ChiralParams& p, double r) {
 
 slicer::Toolpath generate_tetrachiral(const ChiralParams& p) {
   slicer::Toolpath t = generate_chiral(ChiralKind::Tetra, p);
-  t.derived["porosity_thesis"] = tetrachiral_thesis_porosity(p, t.derived.at("node_radius_mm").get<double>());
+  t.derived["porosity_thesis"] =
+      tetrachiral_thesis_porosity(p, t.derived.at("node_radius_mm").get<double>());
   t.derived["porosity_thesis_formula"] = "1 - (2 l d / cos(atan(2r/l)) + pi r (3h + 2d)) / l^2";
   return t;
 }

@@ -9,8 +9,10 @@
 namespace strand::testing {
 namespace {
 
-const std::string kTetra = "tetrachiral --nozzle 0.5 --cell 10 --rows 6 --cols 2 --layers 3 --grip 10";
-const std::string kHexa = "hexachiral --nozzle 0.4 --cell 5.3 --rows 10 --cols 4 --layers 3 --grip 10";
+const std::string kTetra =
+    "tetrachiral --nozzle 0.5 --cell 10 --rows 6 --cols 2 --layers 3 --grip 10";
+const std::string kHexa =
+    "hexachiral --nozzle 0.4 --cell 5.3 --rows 10 --cols 4 --layers 3 --grip 10";
 
 TEST(ChiralCli, SummaryShowsSizeNodesAndOneStrand) {
   const auto dir = fresh_dir("chiral");
@@ -52,7 +54,8 @@ TEST(ChiralCli, BadInputExitsTwoWithOneLineAndNoFile) {
 TEST(ChiralCli, ThesisSampleJobsRun) {
   for (const char* name : {"tetrachiral-thesis", "hexachiral-thesis"}) {
     const auto dir = fresh_dir("chiral-job");
-    const auto r = run_strand(std::string("job ") + STRAND_SOURCE_DIR + "/samples/" + name + ".json", dir);
+    const auto r =
+        run_strand(std::string("job ") + STRAND_SOURCE_DIR + "/samples/" + name + ".json", dir);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(exists(dir + "/" + name + ".gcode"));
   }

@@ -33,12 +33,15 @@ TEST(ChiralFrame, EvensEveryDegreeAndStaysOutsideTheNodes) {
       for (std::size_t k = 1; k + 1 < e.path.pts.size(); ++k) {
         for (const Vec2& c : l.nodes) EXPECT_GT((e.path.pts[k] - c).norm(), r.attach_mm);
       }
-      EXPECT_NEAR((e.path.pts.front() - l.nodes[static_cast<std::size_t>(e.from)]).norm(), r.attach_mm, 1e-9);
-      EXPECT_NEAR((e.path.pts.back() - l.nodes[static_cast<std::size_t>(e.to)]).norm(), r.attach_mm, 1e-9);
+      EXPECT_NEAR((e.path.pts.front() - l.nodes[static_cast<std::size_t>(e.from)]).norm(),
+                  r.attach_mm, 1e-9);
+      EXPECT_NEAR((e.path.pts.back() - l.nodes[static_cast<std::size_t>(e.to)]).norm(), r.attach_mm,
+                  1e-9);
     }
     for (std::size_t v = 0; v < degree.size(); ++v) EXPECT_EQ(degree[v] % 2, 0u) << "node " << v;
     ASSERT_GE(f.grip_edge, 0);
-    EXPECT_LT(f.mark.y(), l.nodes.front().y() - r.frame_mm - 5.0 + 1e-9) << "mark under the bottom grip";
+    EXPECT_LT(f.mark.y(), l.nodes.front().y() - r.frame_mm - 5.0 + 1e-9)
+        << "mark under the bottom grip";
   }
 }
 

@@ -15,14 +15,16 @@ using slicer::Vec2;
 
 TEST(LigamentTangent, TouchesBothCirclesAndPassesThroughTheMidpoint) {
   for (double deg : {0.0, 37.0, 90.0, 200.0}) {
-    const Vec2 a(1, 2), b = a + 7.0 * Vec2(std::cos(slicer::deg_to_rad(deg)), std::sin(slicer::deg_to_rad(deg)));
+    const Vec2 a(1, 2),
+        b = a + 7.0 * Vec2(std::cos(slicer::deg_to_rad(deg)), std::sin(slicer::deg_to_rad(deg)));
     const double r = 1.6;
     const auto [ta, tb] = ligament_tangent(a, b, r);
     EXPECT_NEAR((ta - a).norm(), r, 1e-12);
     EXPECT_NEAR((tb - b).norm(), r, 1e-12);
     EXPECT_NEAR((ta - a).dot(tb - ta), 0.0, 1e-9) << "tangent at a";
     EXPECT_NEAR((tb - b).dot(tb - ta), 0.0, 1e-9) << "tangent at b";
-    EXPECT_NEAR(slicer::point_segment_distance((a + b) / 2, ta, tb), 0.0, 1e-12) << "internal tangent";
+    EXPECT_NEAR(slicer::point_segment_distance((a + b) / 2, ta, tb), 0.0, 1e-12)
+        << "internal tangent";
     EXPECT_GT(slicer::cross(ta - a, tb - ta), 0.0) << "leaves a counter-clockwise";
   }
 }

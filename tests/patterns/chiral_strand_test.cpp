@@ -21,14 +21,16 @@ TEST(NodeHairpin, OnePassPerRadiusEndingOnTheAttachCircleAtTheExit) {
       const auto segs = node_hairpin(c, r, 0.3, sweep, 0.4);
       std::multiset<long> radii;
       for (const auto& s : segs) {
-        if (s.kind == slicer::SegmentKind::Arc) radii.insert(std::lround((s.end_mm - c).norm() * 1000));
+        if (s.kind == slicer::SegmentKind::Arc)
+          radii.insert(std::lround((s.end_mm - c).norm() * 1000));
       }
       std::multiset<long> expected;
       for (double p : r.pass_mm) expected.insert(std::lround(p * 1000));
       EXPECT_EQ(radii, expected) << passes << " passes";
       const Vec2 exit = c + r.attach_mm * Vec2(std::cos(0.3 + sweep), std::sin(0.3 + sweep));
       EXPECT_NEAR((segs.back().end_mm - exit).norm(), 0.0, 1e-12);
-      EXPECT_NEAR((segs.front().end_mm - c).norm(), r.pass_mm.back(), 1e-12) << "enters the outer pass";
+      EXPECT_NEAR((segs.front().end_mm - c).norm(), r.pass_mm.back(), 1e-12)
+          << "enters the outer pass";
     }
   }
 }
@@ -54,8 +56,9 @@ TEST(ChiralLayer, OneClosedStrokeAllFourFeatures) {
   std::set<slicer::Feature> features;
   for (const auto& s : strokes[0].segments) features.insert(s.feature);
   EXPECT_EQ(features, (std::set<slicer::Feature>{slicer::Feature::Ligament, slicer::Feature::Node,
-                                                  slicer::Feature::Grip, slicer::Feature::Frame}));
-  EXPECT_EQ(strokes[0].segments.front().feature, slicer::Feature::Grip) << "starts in the bottom grip";
+                                                 slicer::Feature::Grip, slicer::Feature::Frame}));
+  EXPECT_EQ(strokes[0].segments.front().feature, slicer::Feature::Grip)
+      << "starts in the bottom grip";
 }
 
 }  // namespace

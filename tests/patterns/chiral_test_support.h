@@ -23,12 +23,13 @@ struct Emitted {
   post::ParsedGcode parsed;
 };
 
-inline Emitted emit(const slicer::ParamTable& table, slicer::Toolpath (*make)(const nlohmann::json&),
-                    const nlohmann::json& given) {
+inline Emitted emit(const slicer::ParamTable& table,
+                    slicer::Toolpath (*make)(const nlohmann::json&), const nlohmann::json& given) {
   Emitted e;
   e.toolpath = make(slicer::resolve_params(table, given));
   const auto m = machines::load_profile("deltawasp-2040-clay");
-  const auto gcode = post::produce(e.toolpath, m, post::plan_options_from(e.toolpath, 0.01), "x.gcode").gcode;
+  const auto gcode =
+      post::produce(e.toolpath, m, post::plan_options_from(e.toolpath, 0.01), "x.gcode").gcode;
   e.parsed = post::parse_gcode(gcode);
   return e;
 }
@@ -56,8 +57,8 @@ inline nlohmann::json random_params(std::mt19937& rng, double (*min_cell)(const 
 // Zero crossings, one strand per layer, and deposits spanning the reported size.
 inline void expect_sound(const Emitted& e) {
   const auto c = post::find_contacts(e.parsed.program, 0.01, 1e-3);
-  EXPECT_TRUE(c.crossings.empty()) << c.crossings.size() << " crossings, first at "
-                                   << c.crossings.front().at_mm.transpose();
+  EXPECT_TRUE(c.crossings.empty())
+      << c.crossings.size() << " crossings, first at " << c.crossings.front().at_mm.transpose();
   const auto est = post::estimate(e.parsed.program);
   ASSERT_EQ(est.layers.size(), e.toolpath.layers.size());
   for (const auto& l : est.layers) EXPECT_EQ(l.strands, 1) << "layer " << l.layer;
@@ -69,7 +70,8 @@ inline void expect_sound(const Emitted& e) {
   }
   const auto& size = e.toolpath.derived.at("size_mm");
   const double d = e.toolpath.parameters.at("nozzle").get<double>();
-  for (int k = 0; k < 2; ++k) EXPECT_NEAR(hi[k] - lo[k] + d, size[k].get<double>(), 0.01) << "axis " << k;
+  for (int k = 0; k < 2; ++k)
+    EXPECT_NEAR(hi[k] - lo[k] + d, size[k].get<double>(), 0.01) << "axis " << k;
 }
 
 }  // namespace strand::patterns::chiral_testing

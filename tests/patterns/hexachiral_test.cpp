@@ -10,8 +10,8 @@
 namespace strand::patterns {
 namespace {
 
-const nlohmann::json kThesis = {{"nozzle", 0.4}, {"cell", 5.3}, {"rows", 10}, {"cols", 4},
-                                {"layers", 3}, {"grip", 10}};
+const nlohmann::json kThesis = {{"nozzle", 0.4}, {"cell", 5.3}, {"rows", 10},
+                                {"cols", 4},     {"layers", 3}, {"grip", 10}};
 
 chiral_testing::Emitted emit_hexa(const nlohmann::json& given) {
   return chiral_testing::emit(hexachiral_table(), &hexachiral_from_values, given);
@@ -41,7 +41,8 @@ TEST(Hexachiral, ThesisDefaultsGiveTheThesisNodeRadius) {
   const auto e = emit_hexa(kThesis);
   const double d = 0.4, h = 0.32;
   EXPECT_NEAR(e.toolpath.derived.at("node_radius_mm").get<double>(), 2.055 / 2 + h + d / 2, 1e-12);
-  EXPECT_FALSE(e.toolpath.derived.contains("porosity_thesis")) << "the thesis formula is tetrachiral only";
+  EXPECT_FALSE(e.toolpath.derived.contains("porosity_thesis"))
+      << "the thesis formula is tetrachiral only";
 }
 
 TEST(HexachiralParams, CellTooSmallForTheNodeNamesTheLimit) {
@@ -52,8 +53,10 @@ TEST(HexachiralParams, CellTooSmallForTheNodeNamesTheLimit) {
     hexachiral_from_values(slicer::resolve_params(hexachiral_table(), bad));
     FAIL();
   } catch (const InputError& ex) {
-    EXPECT_NE(std::string(ex.what()).find("hexachiral.cell = 3: must be >= " + slicer::short_number(limit)),
-              std::string::npos) << ex.what();
+    EXPECT_NE(std::string(ex.what()).find("hexachiral.cell = 3: must be >= " +
+                                          slicer::short_number(limit)),
+              std::string::npos)
+        << ex.what();
   }
   EXPECT_LE(limit, 5.3) << "the thesis specimen is valid";
 }

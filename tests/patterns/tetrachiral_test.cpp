@@ -14,8 +14,8 @@ namespace {
 
 using chiral_testing::emit;
 
-const nlohmann::json kThesis = {{"nozzle", 0.5}, {"cell", 10}, {"rows", 6}, {"cols", 2},
-                                {"layers", 3}, {"grip", 10}};
+const nlohmann::json kThesis = {{"nozzle", 0.5}, {"cell", 10},  {"rows", 6},
+                                {"cols", 2},     {"layers", 3}, {"grip", 10}};
 
 chiral_testing::Emitted emit_tetra(const nlohmann::json& given) {
   return emit(tetrachiral_table(), &tetrachiral_from_values, given);
@@ -24,8 +24,8 @@ chiral_testing::Emitted emit_tetra(const nlohmann::json& given) {
 double min_cell_for(const nlohmann::json& given) {
   auto p = given;
   p["cell"] = 1000.0;
-  return chiral_min_cell_mm(ChiralKind::Tetra,
-                            tetrachiral_params_from(slicer::resolve_params(tetrachiral_table(), p)));
+  return chiral_min_cell_mm(
+      ChiralKind::Tetra, tetrachiral_params_from(slicer::resolve_params(tetrachiral_table(), p)));
 }
 
 TEST(Tetrachiral, ThesisSpecimenIsOneStrandWithoutCrossings) {
