@@ -25,8 +25,9 @@ double wrap_2pi(double rad) {
 
 // Grip detour replacing the frame chord p0 -> p1: a solid zig-zag of lines across the
 // whole width (x_lo..x_hi along the chord), outside the chord by one pitch, entered and
-// left through two neighbouring lines near the chord's middle. `mark` gets the start of
-// the return line under the block, where the layer strand starts and ends.
+// left through two neighbouring lines at the chord's middle; when a line falls outside
+// the chord it is reached by a feeder half a pitch out. `mark` gets the start of the
+// return line under the block, where the layer strand starts and ends.
 void add_grip(EdgePath& path, const Vec2& p0, const Vec2& p1, double x_lo, double x_hi,
               double pitch_mm, double grip_mm, Vec2& mark) {
   const double len = (p1 - p0).norm();
@@ -36,14 +37,17 @@ void add_grip(EdgePath& path, const Vec2& p0, const Vec2& p1, double x_lo, doubl
   lines += lines % 2;
   const double sp = (x_hi - x_lo) / (lines - 1);
   auto xl = [&](int i) { return x_lo + i * sp; };
-  int i1 = -1;
+  int i1 = 0;  // the last even line left of the middle enters, the next one leaves
   for (int i = 0; i + 1 < lines; i += 2) {
-    if (xl(i) < sp / 4 || xl(i + 1) > len - sp / 4) continue;
-    if (i1 < 0 || std::abs(xl(i) - len / 2) < std::abs(xl(i1) - len / 2)) i1 = i;
+    if (xl(i) < len / 2) i1 = i;
   }
-  if (i1 < 0) throw std::logic_error("chiral grip: frame chord too short for the grip entry");
+  const double eps = sp / 16, y_feed = pitch_mm / 2;
+  const double xa = std::clamp(xl(i1), eps, len / 2 - eps);
+  const double xb = std::clamp(xl(i1 + 1), len / 2 + eps, len - eps);
   const double y_top = pitch_mm, y_ret = pitch_mm + grip_mm, y_bot = y_ret - sp;
-  path.add(at(xl(i1), 0), Feature::Frame);
+  path.add(at(xa, 0), Feature::Frame);
+  if (xa != xl(i1))
+    path.add(at(xa, y_feed), Feature::Grip), path.add(at(xl(i1), y_feed), Feature::Grip);
   double y = 0;
   for (int i = i1; i >= 0; --i) {
     if (i != i1) path.add(at(xl(i), y), Feature::Grip);
@@ -53,9 +57,10 @@ void add_grip(EdgePath& path, const Vec2& p0, const Vec2& p1, double x_lo, doubl
   mark = at(xl(0), y_ret);
   for (int i = lines - 1; i > i1; --i) {
     path.add(at(xl(i), y), Feature::Grip);
-    y = (lines - 1 - i) % 2 == 0 ? (i == i1 + 1 ? 0.0 : y_top) : y_bot;
+    y = (lines - 1 - i) % 2 == 0 ? (i == i1 + 1 ? (xb != xl(i) ? y_feed : 0.0) : y_top) : y_bot;
     path.add(at(xl(i), y), Feature::Grip);
   }
+  if (xb != xl(i1 + 1)) path.add(at(xb, y_feed), Feature::Grip), path.add(at(xb, 0), Feature::Grip);
   path.add(p1, Feature::Frame);
 }
 

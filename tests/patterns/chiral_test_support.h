@@ -41,7 +41,7 @@ inline nlohmann::json random_params(std::mt19937& rng, double (*min_cell)(const 
   const double d = 0.2 + 0.6 * unit(rng);
   nlohmann::json p = {{"nozzle", d},
                       {"layer-height", d * (0.5 + 0.5 * unit(rng))},
-                      {"node-core", 0.5 + 2.5 * unit(rng)},
+                      {"node-core", 0.05 + 2.95 * unit(rng)},
                       {"node-passes", std::vector<int>{1, 3, 3, 5}[rng() % 4]},
                       {"grip", unit(rng) < 0.2 ? 0.0 : 2 * d + 8 * unit(rng)},
                       {"layers", 2}};

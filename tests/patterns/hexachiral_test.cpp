@@ -45,6 +45,16 @@ TEST(Hexachiral, ThesisDefaultsGiveTheThesisNodeRadius) {
       << "the thesis formula is tetrachiral only";
 }
 
+TEST(Hexachiral, GripEntryFitsTheShortestFrameChord) {
+  // Tiny core, one pass, cell at its limit: the frame chord is shorter than four grip lines,
+  // so the grip is entered through feeders.
+  nlohmann::json p = {
+      {"nozzle", 0.5}, {"layer-height", 0.25}, {"node-core", 0.05}, {"node-passes", 1},
+      {"grip", 2},     {"layers", 1},          {"rows", 3},         {"cols", 3}};
+  p["cell"] = min_cell_for(p);
+  chiral_testing::expect_sound(emit_hexa(p));
+}
+
 TEST(HexachiralParams, CellTooSmallForTheNodeNamesTheLimit) {
   auto bad = kThesis;
   bad["cell"] = 3;
