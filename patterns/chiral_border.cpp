@@ -231,24 +231,20 @@ ChiralFrame chiral_frame(const ChiralLattice& l, const NodeRings& rings,
   Border border;
   border.poly[0] = border_polygon(l, rings.frame_mm);
   border.poly[1] = border_polygon(l, 2 * rings.frame_mm - rings.attach_mm);
-  for (int k = 0; k < static_cast<int>(l.boundary.size()); ++k) {
-    if (end_angles[static_cast<std::size_t>(l.boundary[static_cast<std::size_t>(k)])].size() % 2 !=
-        0)
-      border.odd_positions.push_back(k);
-  }
-  if (border.odd_positions.empty())
-    throw std::logic_error("chiral lattice without odd boundary nodes");
-  // bottom row: boundary positions 0..cols; top row: the run of nodes with the largest y
   const int nb = static_cast<int>(l.boundary.size());
+  auto node_at = [&](int k) { return l.boundary[static_cast<std::size_t>(k)]; };
+  auto y_at = [&](int k) { return l.nodes[static_cast<std::size_t>(node_at(k))].y(); };
+  for (int k = 0; k < nb; ++k) {
+    if (end_angles[static_cast<std::size_t>(node_at(k))].size() % 2 != 0) {
+      border.odd_positions.push_back(k);
+    }
+  }
+  if (border.odd_positions.empty()) throw std::logic_error("chiral frame: no odd boundary node");
+  // bottom row: boundary positions 0..bottom_last; top row: as many, from the first node at
+  // the largest y (the boundary runs counter-clockwise from the bottom-left node)
   int bottom_last = 0, top_first = 0;
-  while (bottom_last + 1 < nb &&
-         l.nodes[static_cast<std::size_t>(l.boundary[static_cast<std::size_t>(bottom_last + 1)])]
-                 .y() == l.nodes[static_cast<std::size_t>(l.boundary[0])].y())
-    ++bottom_last;
-  const double top_y = l.nodes.back().y();
-  while (l.nodes[static_cast<std::size_t>(l.boundary[static_cast<std::size_t>(top_first)])].y() !=
-         top_y)
-    ++top_first;
+  while (bottom_last + 1 < nb && y_at(bottom_last + 1) == y_at(0)) ++bottom_last;
+  while (y_at(top_first) != l.nodes.back().y()) ++top_first;
   choose_frame(border, 0, bottom_last, top_first, top_first + bottom_last, nb);
   add_frame(b, l, rings, border, end_angles, nozzle_mm, grip_mm);
   return b;
