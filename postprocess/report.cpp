@@ -77,11 +77,25 @@ std::string summary_text(const nlohmann::json& r) {
       << machines::fmt_xyz(d["footprint_mm"][1].get<double>()) << " mm, height "
       << machines::fmt_xyz(d.value("height_mm", 0.0)) << " mm\n";
   }
+  if (d.contains("size_mm")) {
+    o << "  size           " << machines::fmt_xyz(d["size_mm"][0].get<double>()) << " x "
+      << machines::fmt_xyz(d["size_mm"][1].get<double>()) << " x " << machines::fmt_xyz(d["size_mm"][2].get<double>())
+      << " mm\n";
+  }
+  if (d.contains("node_radius_mm")) {
+    o << "  nodes          r " << machines::fmt_xyz(d["node_radius_mm"].get<double>()) << " mm, ring "
+      << machines::fmt_xyz(d["node_ring_thickness_mm"].get<double>()) << " mm vs ligament "
+      << machines::fmt_xyz(d["ligament_thickness_mm"].get<double>()) << " mm\n";
+  }
   if (d.contains("filaments_per_layer")) o << "  filaments      " << d["filaments_per_layer"].dump() << " per layer (cycle)\n";
   std::size_t max_strands = 0;
   for (const auto& s : r.at("strands_per_layer")) max_strands = std::max(max_strands, s.get<std::size_t>());
   o << "  layers         " << tot.at("layers").get<int>() << ", at most " << max_strands << " strand(s) per layer\n";
-  if (d.contains("porosity")) o << "  porosity       " << machines::fmt_fixed(100.0 * d["porosity"].get<double>(), 1) << " %\n";
+  if (d.contains("porosity")) {
+    o << "  porosity       " << machines::fmt_fixed(100.0 * d["porosity"].get<double>(), 1) << " %";
+    if (d.contains("porosity_thesis")) o << " (thesis formula " << machines::fmt_fixed(100.0 * d["porosity_thesis"].get<double>(), 1) << " %)";
+    o << "\n";
+  }
   o << "  deposited      " << machines::fmt_fixed(tot.at("deposit_length_mm").get<double>() / 1000.0, 3) << " m, ink "
     << machines::fmt_fixed(tot.at("ink_volume_ml").get<double>(), 2) << " mL ("
     << machines::fmt_fixed(tot.at("syringe_fills").get<double>(), 2) << " fills of the "

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "patterns/registry.h"
+#include "postprocess/estimate.h"
 #include "postprocess/gcode_parser.h"
 #include "slicer/input_error.h"
 
@@ -25,6 +26,8 @@ using machines::DepositionModel;
 const std::map<std::string, nlohmann::json>& known_params() {
   static const std::map<std::string, nlohmann::json> kParams = {
       {"scaffold", {{"nozzle", 0.84}, {"gap", 1.6}, {"size", {10, 10}}, {"layers", 3}}},
+      {"tetrachiral", {{"nozzle", 0.5}, {"cell", 10}, {"rows", 2}, {"cols", 2}, {"layers", 2}, {"grip", 5}}},
+      {"hexachiral", {{"nozzle", 0.4}, {"cell", 5.3}, {"rows", 2}, {"cols", 2}, {"layers", 2}, {"grip", 5}}},
       {"missing-rib", {{"nozzle", 0.6}, {"rib", 5}, {"angle", 20}, {"rows", 2}, {"cols", 2}, {"layers", 2}}},
       {"reentrant", {{"nozzle", 0.84}, {"cell-width", 8}, {"cell-height", 8}, {"angle", 20}, {"rows", 2}, {"cols", 2}, {"layers", 2}}},
   };
@@ -76,7 +79,8 @@ double deposit_e(const std::string& gcode) {
   double sum = 0.0;
   for (const auto& l : lines_of(gcode)) {
     const auto at = l.find(" E");
-    if (!l.starts_with("G1") || at == std::string::npos || !has_xy(l)) continue;
+    const bool deposit = l.starts_with("G1") || l.starts_with("G2") || l.starts_with("G3");
+    if (!deposit || at == std::string::npos || !has_xy(l)) continue;
     double e = 0.0;
     std::from_chars(l.data() + at + 2, l.data() + l.size(), e);
     sum += e;
@@ -139,7 +143,7 @@ void check_one(const slicer::Toolpath& t, const machines::MachineProfile& m) {
     for (const auto& mv : parsed.program.moves) {
       if (mv.kind == slicer::MoveKind::Deposit) {
         const double h = parsed.program.layers.at(static_cast<std::size_t>(mv.layer)).height_mm;
-        parsed_volume += (mv.end_mm - at).norm() * slicer::bead_area_mm2(mv.width_mm, h);
+        parsed_volume += move_length(at, mv) * slicer::bead_area_mm2(mv.width_mm, h);
       }
       if (mv.kind == slicer::MoveKind::Deposit || mv.kind == slicer::MoveKind::Travel) at = mv.end_mm;
     }

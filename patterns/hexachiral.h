@@ -1,0 +1,18 @@
+// Hexachiral tensile specimen: circular nodes on a triangular lattice (rows l sin 60
+// apart, odd rows shifted by l / 2), six tangent ligaments per node, one continuous
+// non-crossing strand per layer with grip tabs at both ends.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "patterns/chiral.h"
+
+namespace strand::patterns {
+
+slicer::Toolpath generate_hexachiral(const ChiralParams& p);
+
+const slicer::ParamTable& hexachiral_table();
+ChiralParams hexachiral_params_from(const nlohmann::json& values);
+slicer::Toolpath hexachiral_from_values(const nlohmann::json& values);
+
+}  // namespace strand::patterns

@@ -1,0 +1,43 @@
+// Chiral specimens from parameters to G-code text: the thesis samples, and a large
+// tetrachiral lattice to watch the Euler circuit's merging cost (issue 3: the sample jobs
+// must run in well under a second).
+#include <benchmark/benchmark.h>
+
+#include "machines/profile.h"
+#include "patterns/hexachiral.h"
+#include "patterns/tetrachiral.h"
+#include "postprocess/produce.h"
+
+namespace {
+
+void run(benchmark::State& state, const strand::slicer::ParamTable& table,
+         strand::slicer::Toolpath (*make)(const nlohmann::json&), const nlohmann::json& given) {
+  using namespace strand;
+  const auto values = slicer::resolve_params(table, given);
+  const auto machine = machines::load_profile("deltawasp-2040-clay");
+  for (auto _ : state) {
+    const auto t = make(values);
+    auto out = post::produce(t, machine, post::plan_options_from(t, 0.01), "bench.gcode");
+    benchmark::DoNotOptimize(out.gcode.data());
+  }
+}
+
+void BM_ThesisTetrachiralToGcode(benchmark::State& state) {
+  run(state, strand::patterns::tetrachiral_table(), &strand::patterns::tetrachiral_from_values,
+      {{"nozzle", 0.5}, {"cell", 10}, {"cols", 2}, {"rows", 6}, {"layers", 5}, {"grip", 10}});
+}
+BENCHMARK(BM_ThesisTetrachiralToGcode)->Unit(benchmark::kMillisecond);
+
+void BM_ThesisHexachiralToGcode(benchmark::State& state) {
+  run(state, strand::patterns::hexachiral_table(), &strand::patterns::hexachiral_from_values,
+      {{"nozzle", 0.4}, {"cell", 5.3}, {"cols", 4}, {"rows", 10}, {"layers", 5}, {"grip", 10}});
+}
+BENCHMARK(BM_ThesisHexachiralToGcode)->Unit(benchmark::kMillisecond);
+
+void BM_TetrachiralLattice24x24OneLayer(benchmark::State& state) {
+  run(state, strand::patterns::tetrachiral_table(), &strand::patterns::tetrachiral_from_values,
+      {{"nozzle", 0.4}, {"cell", 5}, {"cols", 24}, {"rows", 24}, {"layers", 1}, {"grip", 5}});
+}
+BENCHMARK(BM_TetrachiralLattice24x24OneLayer)->Unit(benchmark::kMillisecond);
+
+}  // namespace

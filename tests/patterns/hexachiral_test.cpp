@@ -1,0 +1,75 @@
+// Hexachiral specimens checked on the emitted G-code parsed back: no crossing inside a
+// layer, one strand per layer, size as reported; and the input rules.
+#include "patterns/hexachiral.h"
+
+#include <gtest/gtest.h>
+
+#include "slicer/input_error.h"
+#include "tests/patterns/chiral_test_support.h"
+
+namespace strand::patterns {
+namespace {
+
+const nlohmann::json kThesis = {{"nozzle", 0.4}, {"cell", 5.3}, {"rows", 10},
+                                {"cols", 4},     {"layers", 3}, {"grip", 10}};
+
+chiral_testing::Emitted emit_hexa(const nlohmann::json& given) {
+  return chiral_testing::emit(hexachiral_table(), &hexachiral_from_values, given);
+}
+
+double min_cell_for(const nlohmann::json& given) {
+  auto p = given;
+  p["cell"] = 1000.0;
+  return chiral_min_cell_mm(ChiralKind::Hexa,
+                            hexachiral_params_from(slicer::resolve_params(hexachiral_table(), p)));
+}
+
+TEST(Hexachiral, ThesisSpecimenIsOneStrandWithoutCrossings) {
+  chiral_testing::expect_sound(emit_hexa(kThesis));
+}
+
+TEST(Hexachiral, FiftyRandomValidSpecimensAreOneStrandWithoutCrossings) {
+  std::mt19937 rng(5300);
+  for (int i = 0; i < 50; ++i) {
+    const auto given = chiral_testing::random_params(rng, &min_cell_for);
+    SCOPED_TRACE(given.dump());
+    chiral_testing::expect_sound(emit_hexa(given));
+  }
+}
+
+TEST(Hexachiral, ThesisDefaultsGiveTheThesisNodeRadius) {
+  const auto e = emit_hexa(kThesis);
+  const double d = 0.4, h = 0.32;
+  EXPECT_NEAR(e.toolpath.derived.at("node_radius_mm").get<double>(), 2.055 / 2 + h + d / 2, 1e-12);
+  EXPECT_FALSE(e.toolpath.derived.contains("porosity_thesis"))
+      << "the thesis formula is tetrachiral only";
+}
+
+TEST(Hexachiral, GripEntryFitsTheShortestFrameChord) {
+  // Tiny core, one pass, cell at its limit: the frame chord is shorter than four grip lines,
+  // so the grip is entered through feeders.
+  nlohmann::json p = {
+      {"nozzle", 0.5}, {"layer-height", 0.25}, {"node-core", 0.05}, {"node-passes", 1},
+      {"grip", 2},     {"layers", 1},          {"rows", 3},         {"cols", 3}};
+  p["cell"] = min_cell_for(p);
+  chiral_testing::expect_sound(emit_hexa(p));
+}
+
+TEST(HexachiralParams, CellTooSmallForTheNodeNamesTheLimit) {
+  auto bad = kThesis;
+  bad["cell"] = 3;
+  const double limit = min_cell_for(kThesis);
+  try {
+    hexachiral_from_values(slicer::resolve_params(hexachiral_table(), bad));
+    FAIL();
+  } catch (const InputError& ex) {
+    EXPECT_NE(std::string(ex.what()).find("hexachiral.cell = 3: must be >= " +
+                                          slicer::short_number(limit)),
+              std::string::npos)
+        << ex.what();
+  }
+  EXPECT_LE(limit, 5.3) << "the thesis specimen is valid";
+}
+
+}  // namespace
+}  // namespace strand::patterns
