@@ -8,6 +8,7 @@
 
 #include "machines/gcode_format.h"
 #include "machines/kinematics.h"
+#include "machines/plotter_kinematics.h"
 #include "postprocess/estimate.h"
 
 namespace strand::post {
@@ -17,7 +18,7 @@ using slicer::Vec2;
 using slicer::Vec3;
 
 bool CheckReport::ok() const {
-  return crossing_count() == 0 && parse_issues.empty() && arcs_forbidden_total == 0 &&
+  return (pen_drawing || crossing_count() == 0) && parse_issues.empty() && arcs_forbidden_total == 0 &&
          outside_volume_total == 0;
 }
 
@@ -85,6 +86,31 @@ void check_moves(const ParsedGcode& parsed, const machines::MachineProfile& m, C
   }
 }
 
+// A pen plotter writes its own axes (cable lengths, R and theta); read them back to paper
+// millimetres so contacts and reach are judged where the pen draws.
+ParsedGcode to_paper(const ParsedGcode& parsed, const machines::Plotter& plotter) {
+  ParsedGcode paper = parsed;
+  auto map = [&](Vec3& p) {
+    const Vec2 q = machines::to_paper(plotter.setup, p.head<2>());
+    p.x() = q.x();
+    p.y() = q.y();
+  };
+  map(paper.program.start_mm);
+  for (auto& mv : paper.program.moves) map(mv.end_mm);
+  return paper;
+}
+
+void check_reach(const ParsedGcode& paper, const machines::MachineProfile& m, CheckReport& r) {
+  const auto& moves = paper.program.moves;
+  for (std::size_t i = 0; i < moves.size(); ++i) {
+    const auto& mv = moves[i];
+    if (mv.kind != MoveKind::Deposit && mv.kind != MoveKind::Travel) continue;
+    if (auto why = machines::unreachable_reason(m.plotter, mv.end_mm.head<2>())) {
+      add_finding(r.outside_volume, r.outside_volume_total, {r.line_of(i), i, mv.end_mm, *why});
+    }
+  }
+}
+
 // One row per layer of the program; a row -1 only when deposits before the first layer
 // have contacts.
 void fill_layers(const ParsedGcode& parsed, const CheckOptions& o, CheckReport& r) {
@@ -134,6 +160,14 @@ CheckReport check_parsed(const ParsedGcode& parsed, const CheckOptions& o) {
   r.moves = parsed.program.moves.size();
   r.move_lines = parsed.move_lines;
   r.parse_issues = parsed.issues;
+  if (o.machine && o.machine->plotter.enabled) {
+    r.pen_drawing = true;
+    r.machine = o.machine->name;
+    const ParsedGcode paper = to_paper(parsed, o.machine->plotter);
+    fill_layers(paper, o, r);
+    check_reach(paper, *o.machine, r);
+    return r;
+  }
   fill_layers(parsed, o, r);
   if (o.machine) {
     r.machine = o.machine->name;
@@ -165,6 +199,7 @@ nlohmann::json to_json(const CheckReport& r) {
   for (const auto& f : r.outside_volume) outside.push_back(finding_json(f));
   return {{"ok", r.ok()},
           {"machine", r.machine},
+          {"pen_drawing", r.pen_drawing},
           {"moves", r.moves},
           {"layers", layers},
           {"crossings", r.crossing_count()},
@@ -241,8 +276,11 @@ std::string to_text(const CheckReport& r) {
                                        : ", machine " + r.machine) +
                     "\n";
   out += layer_table(r);
-  if (r.crossing_count() > 0)
-    out += "self-crossings (" + std::to_string(r.crossing_count()) + "):\n";
+  if (r.crossing_count() > 0) {
+    out += r.pen_drawing ? "strokes crossing (a drawing may cross itself; listed for review: " +
+                               std::to_string(r.crossing_count()) + "):\n"
+                         : "self-crossings (" + std::to_string(r.crossing_count()) + "):\n";
+  }
   list_contacts(r, true, out);
   if (r.arcs_forbidden_total > 0)
     out += "arcs the machine forbids (" + std::to_string(r.arcs_forbidden_total) + "):\n";

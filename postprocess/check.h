@@ -44,9 +44,14 @@ struct CheckReport {
   std::size_t moves = 0;
   std::string machine;          // profile name, empty when none was given
   std::vector<int> move_lines;  // G-code line of each parsed move
+  // Checked as a pen drawing (the machine is a plotter): coordinates are read back to the
+  // paper through the machine's kinematics, and strokes crossing is drawing content, not a
+  // defect, so crossings are listed but do not fail the check.
+  bool pen_drawing = false;
 
   static constexpr std::size_t kMaxFindings = 1000;
-  // False on crossings, forbidden arcs, outside moves and parse issues; touches are fine.
+  // False on crossings (DIW only), forbidden arcs, outside moves and parse issues; touches
+  // are fine.
   bool ok() const;
   std::size_t crossing_count() const;
   std::size_t touch_count() const;

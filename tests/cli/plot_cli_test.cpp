@@ -196,6 +196,24 @@ struct BadCase {
   const char* must_mention;
 };
 
+
+// Issue 5: `strand check`, pen-aware, passes on every sample drawing for every plotter.
+TEST(PlotCli, EverySamplePassesCheckOnEveryPlotter) {
+  const auto dir = fresh_dir("plotcheck");
+  for (const char* machine : {"xy-plotter-servo", "xy-plotter-z", "xy-plotter-grbl", "polargraph",
+                              "polar-rtheta", "wall-drum-4pen"}) {
+    for (const char* svg : {"shapes", "layers", "lines"}) {
+      SCOPED_TRACE(std::string(machine) + " " + svg);
+      const auto plot = run_strand("plot '" + kSamples + svg + ".svg' --machine " + machine +
+                                       " --fit 200x150 -o p.gcode", dir);
+      ASSERT_EQ(plot.exit_code, 0) << plot.err;
+      const auto check = run_strand(std::string("check p.gcode --json --machine ") + machine, dir);
+      EXPECT_EQ(check.exit_code, 0) << check.out;
+      EXPECT_NE(check.out.find("\"pen_drawing\": true"), std::string::npos) << check.out.substr(0, 300);
+    }
+  }
+}
+
 class PlotBadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(PlotBadInput, ExitTwoOneLineNoFile) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "machines/plotter_kinematics.h"
 #include "machines/profile.h"
 #include "patterns/scaffold.h"
 #include "postprocess/produce.h"
@@ -143,6 +144,45 @@ TEST(Check, JsonCarriesTheVerdictAndTheContacts) {
   EXPECT_FALSE(j["ok"].get<bool>());
   EXPECT_EQ(j["layers"][0]["crossings"][0]["line_b"].get<int>(), 5);
   EXPECT_EQ(j["crossings"].get<int>(), 1);
+}
+
+
+using slicer::Vec2;
+
+// Pen drawings: a plotter profile makes check read the machine's axes back to paper.
+std::string polargraph_gcode(const machines::MachineProfile& m, const std::vector<Vec2>& paper) {
+  std::string g = "G21\nG90\n";
+  bool first = true;
+  for (const Vec2& p : paper) {
+    const Vec2 a = machines::to_axes(m.plotter.setup, p);
+    g += std::string(first ? "G0" : "G1") + " X" + std::to_string(a.x()) + " Y" + std::to_string(a.y()) + "\n";
+    first = false;
+  }
+  return g;
+}
+
+TEST(CheckPen, CrossingStrokesAreListedButDoNotFailADrawing) {
+  const auto m = machines::load_profile("polargraph");
+  const auto [lo, hi] = machines::drawable_area(m.plotter);
+  const Vec2 c = (lo + hi) / 2;
+  const auto r = check_gcode(polargraph_gcode(m, {c + Vec2(-20, -20), c + Vec2(20, 20), c + Vec2(20, -20), c + Vec2(-20, 20)}),
+                             {0.01, 1e-3, &m});
+  EXPECT_TRUE(r.pen_drawing);
+  EXPECT_EQ(r.crossing_count(), 1u) << "the X is found on the paper, not in cable-length space";
+  EXPECT_TRUE(r.ok());
+  EXPECT_TRUE(r.outside_volume.empty());
+}
+
+TEST(CheckPen, PointOutsideThePolargraphTensionAreaIsAProblem) {
+  const auto m = machines::load_profile("polargraph");
+  const double mid = m.plotter.setup.motor_distance_mm / 2;
+  // Just below the line between the motors the cables pull almost horizontally: the
+  // tension far exceeds the allowed maximum.
+  const auto r = check_gcode(polargraph_gcode(m, {Vec2(mid, 600), Vec2(mid, 8)}), {0.01, 1e-3, &m});
+  ASSERT_FALSE(r.ok());
+  ASSERT_EQ(r.outside_volume.size(), 1u);
+  EXPECT_NE(r.outside_volume[0].what.find("tension"), std::string::npos) << r.outside_volume[0].what;
+  EXPECT_NEAR(r.outside_volume[0].at_mm.y(), 8.0, 0.01) << "reported in paper mm";
 }
 
 }  // namespace
