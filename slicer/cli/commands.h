@@ -13,5 +13,7 @@ using Action = std::function<int()>;
 void add_generator_commands(CLI::App& app, Action& action);
 void add_job_command(CLI::App& app, Action& action);
 void add_machines_command(CLI::App& app, Action& action);
+void add_sweep_command(CLI::App& app, Action& action);
+void add_preview_command(CLI::App& app, Action& action);
 
 }  // namespace strand::cli

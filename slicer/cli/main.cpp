@@ -13,6 +13,8 @@ int main(int argc, char** argv) {
   strand::cli::add_generator_commands(app, action);
   strand::cli::add_job_command(app, action);
   strand::cli::add_machines_command(app, action);
+  strand::cli::add_sweep_command(app, action);
+  strand::cli::add_preview_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,170 @@
+// One row per point: run, check, preview, or record why not.
+#include "slicer/cli/sweep_runner.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <filesystem>
+#include <mutex>
+
+#include "postprocess/gcode_parser.h"
+#include "postprocess/preview_image.h"
+#include "slicer/cli/content_hash.h"
+#include "slicer/cli/sweep_check.h"
+#include "slicer/cli/sweep_manifest.h"
+#include "slicer/file_io.h"
+#include "slicer/input_error.h"
+#include "slicer/tolerances.h"
+
+namespace strand::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string params_hash(const SweepSpec& s, const SweepPoint& p) {
+  const nlohmann::json key = {{"strand", STRAND_VERSION},
+                              {"generator", s.job.generator->name},
+                              {"machine", s.job.settings.machine},
+                              {"arc-tolerance", s.job.settings.arc_tolerance_mm},
+                              {"params", p.params}};
+  return fnv1a_hex(key.dump());
+}
+
+nlohmann::json base_row(const SweepPoint& p, const std::string& status) {
+  return {{"index", p.index}, {"name", p.name}, {"status", status}, {"parameters", p.varied}};
+}
+
+nlohmann::json figures(const nlohmann::json& report) {
+  const auto& d = report.at("derived");
+  const auto& tot = report.at("totals");
+  return {{"derived", d},
+          {"porosity", d.value("porosity", nlohmann::json())},
+          {"ink_volume_ml", tot.at("ink_volume_ml")},
+          {"time_s", tot.at("time_naive_s")},
+          {"layers", tot.at("layers")},
+          {"strands_per_layer", report.at("strands_per_layer")}};
+}
+
+bool up_to_date(const nlohmann::json* prev, const std::string& hash, const std::string& dir) {
+  if (!prev || prev->value("status", "") != "ok" || prev->value("params_hash", "") != hash) return false;
+  const fs::path file = fs::path(dir) / prev->value("output", "");
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) return false;
+  return fnv1a_hex(slicer::read_file(file.string())) == prev->value("content_hash", "");
+}
+
+void write_preview(const std::string& dir, const std::string& name, std::string_view gcode) {
+  slicer::write_file_atomic((fs::path(dir) / "previews" / (name + ".png")).string(), thumbnail_png(gcode));
+}
+
+nlohmann::json run_point(const SweepSpec& s, const SweepPoint& p, const SweepOptions& o,
+                         const nlohmann::json* prev, bool& reused) {
+  if (!p.dropped.empty()) {
+    nlohmann::json row = base_row(p, "dropped");
+    row["reason"] = p.dropped;
+    return row;
+  }
+  nlohmann::json row = base_row(p, "failed");
+  if (!p.error.empty()) {
+    row["error"] = p.error;
+    return row;
+  }
+  const std::string hash = params_hash(s, p);
+  row["params_hash"] = hash;
+  try {
+    const std::string preview = "previews/" + p.name + ".png";
+    if (up_to_date(prev, hash, o.dir)) {
+      reused = true;
+      if (o.previews && !fs::exists(fs::path(o.dir) / preview)) {
+        write_preview(o.dir, p.name, slicer::read_file((fs::path(o.dir) / prev->at("output").get<std::string>()).string()));
+      }
+      return *prev;
+    }
+    JobSettings settings = s.job.settings;
+    settings.output = p.name + ".gcode";
+    settings.report.clear();
+    const post::Produced produced = produce_job(*s.job.generator, p.params, settings);
+    slicer::write_file_atomic((fs::path(o.dir) / settings.output).string(), produced.gcode);
+    if (o.previews) write_preview(o.dir, p.name, produced.gcode);
+    row["status"] = "ok";
+    row["output"] = settings.output;
+    row["preview"] = o.previews ? nlohmann::json(preview) : nlohmann::json();
+    row["content_hash"] = fnv1a_hex(produced.gcode);
+    row["check"] = sweep_check_summary(produced.gcode);
+    row.update(figures(produced.report));
+  } catch (const std::exception& e) {  // InputError and bugs alike: record, keep going
+    row["error"] = e.what();
+  }
+  return row;
+}
+
+std::map<std::string, nlohmann::json> previous_rows(const std::string& path) {
+  std::map<std::string, nlohmann::json> rows;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return rows;
+  try {
+    const nlohmann::json manifest = nlohmann::json::parse(slicer::read_file(path));
+    for (const auto& r : manifest.at("points")) {
+      rows[r.at("name").get<std::string>()] = r;
+    }
+  } catch (const std::exception&) {
+    rows.clear();  // an unreadable old manifest only means nothing is reused
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::string thumbnail_png(std::string_view gcode) {
+  post::ImageOptions o;
+  o.width_px = 480;
+  o.height_px = 400;
+  o.view = post::PreviewView::Top;
+  const post::PreviewScene scene =
+      post::preview_scene(post::parse_gcode(gcode).program, slicer::kDefaultArcToleranceMm);
+  return post::render_png(scene, o);
+}
+
+SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const SweepOptions& o,
+                      const ProgressFn& progress) {
+  std::vector<SweepPoint> points;
+  for (auto& p : expand_points(spec)) {
+    if (in_shard(p.index, o.shard)) points.push_back(std::move(p));
+  }
+  std::error_code ec;
+  fs::create_directories(fs::path(o.dir) / (o.previews ? "previews" : ""), ec);
+  if (ec) throw InputError("-o = " + o.dir + ": cannot create the directory");
+  const auto prev = previous_rows((fs::path(o.dir) / manifest_file_name(o.shard)).string());
+  std::vector<nlohmann::json> rows(points.size());
+  std::mutex m;
+  SweepProgress state;
+  state.total = points.size();
+  const int threads = o.jobs > 0 ? o.jobs : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, points.size(), [&](std::size_t i) {
+      const auto it = prev.find(points[i].name);
+      bool reused = false;
+      rows[i] = run_point(spec, points[i], o, it == prev.end() ? nullptr : &it->second, reused);
+      const std::lock_guard<std::mutex> lock(m);
+      ++state.done;
+      state.failed += rows[i].at("status") == "failed";
+      state.reused += reused;
+      state.row = &rows[i];
+      if (progress) progress(state);
+    });
+  });
+  SweepResult r;
+  r.manifest = make_manifest(spec, source, rows, o.shard);
+  write_manifest(r.manifest, o.dir, o.shard);
+  for (const auto& row : rows) {
+    r.failed += row.at("status") == "failed";
+    r.dropped += row.at("status") == "dropped";
+  }
+  r.reused = state.reused;
+  r.ran = rows.size() - r.failed - r.dropped - r.reused;
+  return r;
+}
+
+}  // namespace strand::cli
