@@ -91,7 +91,7 @@ void add_sweep_command(CLI::App& app, Action& action) {
   sub->add_option("-j,--jobs", a->jobs, "parallel points (default: every core)");
   sub->add_option("--shard", a->shard, "run shard I of N (1-based), e.g. --shard $SLURM_ARRAY_TASK_ID/8");
   sub->add_flag("--merge", a->merge, "merge shard manifests into DIR/manifest.json, manifest.csv, index.html");
-  sub->add_flag("--no-previews", a->no_previews, "skip the PNG thumbnail per point");
+  sub->add_flag("--no-previews", a->no_previews, "skip the PNG thumbnail and HTML viewer per point");
   sub->callback([&action, a] { action = [a] { return a->merge ? merge(*a) : run(*a); }; });
 }
 

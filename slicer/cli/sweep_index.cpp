@@ -98,6 +98,8 @@ std::string card(const nlohmann::json& r, const nlohmann::json& keys) {
     if (!preview.empty()) body += "<a href=\"" + esc(preview) + "\"><img src=\"" + esc(preview) + "\" alt=\"preview\"></a>";
     rows += std::string("<tr><td>check</td><td class=\"") + (ok ? "ok\">ok" : "bad\">problems") + "</td></tr>";
     body += "<table>" + rows + "</table><a href=\"" + esc(r.at("output").get<std::string>()) + "\">G-code</a>";
+    const auto page = r.value("preview_html", nlohmann::json());
+    if (page.is_string()) body += " &middot; <a href=\"" + esc(page.get<std::string>()) + "\">interactive view</a>";
   } else {
     const std::string why = r.contains("error") ? r.at("error").get<std::string>() : r.value("reason", "");
     body += "<table>" + rows + "</table><p class=\"bad\">" + esc(status + ": " + why) + "</p>";

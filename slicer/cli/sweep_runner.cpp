@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "postprocess/gcode_parser.h"
+#include "postprocess/preview_html.h"
 #include "postprocess/preview_image.h"
 #include "slicer/cli/content_hash.h"
 #include "slicer/cli/sweep_check.h"
@@ -54,8 +55,13 @@ bool up_to_date(const nlohmann::json* prev, const std::string& hash, const std::
   return fnv1a_hex(slicer::read_file(file.string())) == prev->value("content_hash", "");
 }
 
-void write_preview(const std::string& dir, const std::string& name, std::string_view gcode) {
-  slicer::write_file_atomic((fs::path(dir) / "previews" / (name + ".png")).string(), thumbnail_png(gcode));
+// The PNG thumbnail and the interactive HTML page of one point, from one parse.
+void write_previews(const std::string& dir, const std::string& name, std::string_view gcode) {
+  const post::PreviewScene scene =
+      post::preview_scene(post::parse_gcode(gcode).program, slicer::kDefaultArcToleranceMm);
+  const fs::path base = fs::path(dir) / "previews";
+  slicer::write_file_atomic((base / (name + ".png")).string(), thumbnail_png(scene));
+  slicer::write_file_atomic((base / (name + ".html")).string(), post::render_html(scene, name + ".gcode"));
 }
 
 nlohmann::json run_point(const SweepSpec& s, const SweepPoint& p, const SweepOptions& o,
@@ -74,10 +80,11 @@ nlohmann::json run_point(const SweepSpec& s, const SweepPoint& p, const SweepOpt
   row["params_hash"] = hash;
   try {
     const std::string preview = "previews/" + p.name + ".png";
-    if (up_to_date(prev, hash, o.dir)) {
+    const std::string page = "previews/" + p.name + ".html";
+    if (up_to_date(prev, hash, o.dir) && prev->value("preview", nlohmann::json()).is_string() == o.previews) {
       reused = true;
-      if (o.previews && !fs::exists(fs::path(o.dir) / preview)) {
-        write_preview(o.dir, p.name, slicer::read_file((fs::path(o.dir) / prev->at("output").get<std::string>()).string()));
+      if (o.previews && !(fs::exists(fs::path(o.dir) / preview) && fs::exists(fs::path(o.dir) / page))) {
+        write_previews(o.dir, p.name, slicer::read_file((fs::path(o.dir) / prev->at("output").get<std::string>()).string()));
       }
       return *prev;
     }
@@ -86,10 +93,11 @@ nlohmann::json run_point(const SweepSpec& s, const SweepPoint& p, const SweepOpt
     settings.report.clear();
     const post::Produced produced = produce_job(*s.job.generator, p.params, settings);
     slicer::write_file_atomic((fs::path(o.dir) / settings.output).string(), produced.gcode);
-    if (o.previews) write_preview(o.dir, p.name, produced.gcode);
+    if (o.previews) write_previews(o.dir, p.name, produced.gcode);
     row["status"] = "ok";
     row["output"] = settings.output;
     row["preview"] = o.previews ? nlohmann::json(preview) : nlohmann::json();
+    row["preview_html"] = o.previews ? nlohmann::json(page) : nlohmann::json();
     row["content_hash"] = fnv1a_hex(produced.gcode);
     row["check"] = sweep_check_summary(produced.gcode);
     row.update(figures(produced.report));
@@ -116,13 +124,11 @@ std::map<std::string, nlohmann::json> previous_rows(const std::string& path) {
 
 }  // namespace
 
-std::string thumbnail_png(std::string_view gcode) {
+std::string thumbnail_png(const post::PreviewScene& scene) {
   post::ImageOptions o;
   o.width_px = 480;
   o.height_px = 400;
   o.view = post::PreviewView::Top;
-  const post::PreviewScene scene =
-      post::preview_scene(post::parse_gcode(gcode).program, slicer::kDefaultArcToleranceMm);
   return post::render_png(scene, o);
 }
 

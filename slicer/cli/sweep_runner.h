@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "postprocess/preview_scene.h"
 #include "slicer/cli/sweep_spec.h"
 
 namespace strand::cli {
@@ -15,7 +16,7 @@ struct SweepOptions {
   std::string dir;        // output directory (created if missing)
   int jobs = 0;           // worker threads; 0 = every core
   Shard shard;            // 1/1 = the whole sweep
-  bool previews = true;   // a PNG thumbnail per point in DIR/previews/
+  bool previews = true;   // a PNG thumbnail and an HTML viewer per point in DIR/previews/
 };
 
 struct SweepProgress {
@@ -39,6 +40,6 @@ SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const
                       const ProgressFn& progress);
 
 // The thumbnail drawn for each point: top view of every layer, coloured by feature.
-std::string thumbnail_png(std::string_view gcode);
+std::string thumbnail_png(const post::PreviewScene& scene);
 
 }  // namespace strand::cli

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "slicer/cli/content_hash.h"
 #include "tests/support/cli_runner.h"
@@ -48,6 +49,7 @@ TEST(SweepCli, ManifestRowsMatchTheFilesWritten) {
     EXPECT_TRUE(row.at("check").at("ok").get<bool>()) << row.dump();
     EXPECT_GT(row.at("ink_volume_ml").get<double>(), 0.0);
     EXPECT_TRUE(exists(dir + "/out/" + row.at("preview").get<std::string>()));
+    EXPECT_TRUE(exists(dir + "/out/" + row.at("preview_html").get<std::string>()));
     ++gcodes;
   }
   EXPECT_EQ(gcodes, 5u);
@@ -59,6 +61,27 @@ TEST(SweepCli, ManifestRowsMatchTheFilesWritten) {
   const std::string index = slurp(dir + "/out/index.html");
   EXPECT_EQ(std::count(index.begin(), index.end(), '<') > 0, true);
   for (const auto& row : m.at("points")) EXPECT_NE(index.find(row.at("name").get<std::string>()), std::string::npos);
+}
+
+TEST(SweepCli, HundredPointsEachRowMatchesItsFile) {
+  const auto dir = fresh_dir("sweep-100");
+  write(dir + "/s.json", R"({"job": {"generator": "scaffold", "params": {"size": "12x12", "height": 2}},
+    "vary": {"nozzle": {"from": 0.4, "to": 0.85, "step": 0.05}, "gap": {"from": 0.9, "to": 1.8, "step": 0.1}}})");
+  const auto r = run_strand("sweep s.json -o out --no-previews", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto m = nlohmann::json::parse(slurp(dir + "/out/manifest.json"));
+  ASSERT_EQ(m.at("points").size(), 100u);
+  std::set<std::string> listed;
+  for (const auto& row : m.at("points")) {
+    ASSERT_EQ(row.at("status"), "ok") << row.dump();
+    listed.insert(row.at("output").get<std::string>());
+    EXPECT_EQ(cli::fnv1a_hex(slurp(dir + "/out/" + row.at("output").get<std::string>())), row.at("content_hash"));
+  }
+  std::set<std::string> on_disk;
+  for (const auto& e : fs::directory_iterator(dir + "/out")) {
+    if (e.path().extension() == ".gcode") on_disk.insert(e.path().filename().string());
+  }
+  EXPECT_EQ(listed, on_disk);
 }
 
 TEST(SweepCli, OneAndTwoWorkersGiveIdenticalFiles) {
