@@ -28,6 +28,8 @@ void ProgressBar::update(std::size_t done, std::size_t total, std::size_t failed
     out_ << "sweep: " << done << "/" << total << " " << name << " " << status << "\n";
     return;
   }
+  // A failure keeps its own line above the bar so its error stays readable.
+  if (status.rfind("failed", 0) == 0) out_ << "\r\033[K" << name << " " << status << "\n";
   constexpr int kBarWidth = 30;
   const int filled = total ? static_cast<int>(kBarWidth * done / total) : kBarWidth;
   out_ << "\r[" << std::string(static_cast<std::size_t>(filled), '#')

@@ -12,7 +12,8 @@ namespace strand::cli {
 class ProgressBar {
  public:
   ProgressBar(std::ostream& out, bool terminal);
-  // `name` and `status` describe the point just finished.
+  // `name` and `status` describe the point just finished; a status starting with "failed"
+  // is also printed on its own line on a terminal.
   void update(std::size_t done, std::size_t total, std::size_t failed, const std::string& name,
               const std::string& status);
   void finish();

@@ -84,6 +84,11 @@ std::string card(const nlohmann::json& r, const nlohmann::json& keys) {
     data += " data-" + data_key(k.get<std::string>()) + "=\"" + slicer::short_number(sort_number(v)) + "\"";
     rows += "<tr><td>" + esc(k.get<std::string>()) + "</td><td>" + esc(text(v)) + "</td></tr>";
   }
+  if (r.contains("derived") && r.at("derived").contains("footprint_mm")) {
+    nlohmann::json rounded = nlohmann::json::array();
+    for (const auto& v : r.at("derived").at("footprint_mm")) rounded.push_back(std::round(v.get<double>() * 1000) / 1000);
+    rows += "<tr><td>footprint</td><td>" + esc(text(rounded)) + " mm</td></tr>";
+  }
   for (const char* f : {"porosity", "ink_volume_ml", "time_s", "layers"}) {
     const auto v = r.value(f, nlohmann::json());
     data += std::string(" data-") + data_key(f) + "=\"" + (v.is_number() ? slicer::short_number(v.get<double>()) : "NaN") + "\"";

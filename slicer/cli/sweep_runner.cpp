@@ -52,6 +52,7 @@ bool up_to_date(const nlohmann::json* prev, const std::string& hash, const std::
   const fs::path file = fs::path(dir) / prev->value("output", "");
   std::error_code ec;
   if (!fs::is_regular_file(file, ec)) return false;
+  if (prev->contains("report") && !fs::is_regular_file(fs::path(dir) / prev->value("report", ""), ec)) return false;
   return fnv1a_hex(slicer::read_file(file.string())) == prev->value("content_hash", "");
 }
 
@@ -98,6 +99,10 @@ nlohmann::json run_point(const SweepSpec& s, const SweepPoint& p, const SweepOpt
     row["output"] = settings.output;
     row["preview"] = o.previews ? nlohmann::json(preview) : nlohmann::json();
     row["preview_html"] = o.previews ? nlohmann::json(page) : nlohmann::json();
+    if (!s.job.settings.report.empty()) {  // the base job asked for reports: one per point
+      row["report"] = p.name + ".report.json";
+      slicer::write_file_atomic((fs::path(o.dir) / row["report"].get<std::string>()).string(), produced.report.dump(2) + "\n");
+    }
     row["content_hash"] = fnv1a_hex(produced.gcode);
     row["check"] = sweep_check_summary(produced.gcode);
     row.update(figures(produced.report));

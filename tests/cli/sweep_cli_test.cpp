@@ -131,7 +131,7 @@ TEST(SweepCli, RerunSkipsUpToDatePointsAndRedoesChangedFiles) {
 
 TEST(SweepCli, AFailedPointIsListedAndTheOthersStillRun) {
   const auto dir = fresh_dir("sweep-fail");
-  write(dir + "/s.json", R"({"job": {"generator": "scaffold", "params": {"nozzle": 0.84, "gap": 1.6, "height": 3}},
+  write(dir + "/s.json", R"({"job": {"generator": "scaffold", "params": {"nozzle": 0.84, "gap": 1.6, "height": 3}, "report": "r.json"},
                              "vary": {"size": ["20x20", "180x180", "30x30"]}})");
   const auto r = run_strand("sweep s.json -o out", dir);
   EXPECT_EQ(r.exit_code, 1) << r.err;
@@ -141,6 +141,8 @@ TEST(SweepCli, AFailedPointIsListedAndTheOthersStillRun) {
   EXPECT_EQ(m["points"][1]["status"], "failed");
   EXPECT_FALSE(m["points"][1].value("error", "").empty());
   EXPECT_EQ(m["points"][2]["status"], "ok");
+  const auto report = nlohmann::json::parse(slurp(dir + "/out/" + m["points"][2]["report"].get<std::string>()));
+  EXPECT_EQ(report.at("parameters").at("size"), (nlohmann::json{30, 30}));
   EXPECT_NE(slurp(dir + "/out/manifest.csv").find("failed"), std::string::npos);
 }
 
