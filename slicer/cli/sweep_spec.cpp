@@ -130,6 +130,12 @@ SweepSpec sweep_spec_from_json(const nlohmann::json& j) {
   SweepSpec s;
   s.job = job_spec_from_json(j.at("job"), "sweep.job");
   const auto& table = s.job.generator->table();
+  for (const auto& [k, v] : s.job.params.items()) {
+    if (!find_def(table, k)) {
+      throw InputError("sweep.job.params." + k + ": unknown parameter of " + s.job.generator->name + " (" +
+                       table_keys(table) + ")");
+    }
+  }
   for (const auto& [k, v] : j.at("vary").items()) {
     if (!find_def(table, k)) {
       throw InputError("sweep.vary." + k + ": unknown parameter of " + s.job.generator->name + " (" +

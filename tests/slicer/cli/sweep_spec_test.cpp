@@ -97,6 +97,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadSweep{"where_unknown_name", sweep({{"nozzle", {0.4}}}, {{"where", {"gapp >= nozzle"}}}), "sweep.where[0]"},
         BadSweep{"where_drops_all", sweep({{"nozzle", {0.4}}}, {{"where", {"nozzle > 1"}}}), "sweep.where: drops every one"},
         BadSweep{"duplicate_value", sweep({{"nozzle", {0.4, 0.4}}}), "sweep.vary: two points"},
+        BadSweep{"unknown_base_parameter",
+                 nlohmann::json{{"job", {{"generator", "scaffold"}, {"params", {{"nozle", 1}}}}}, {"vary", {{"gap", {1}}}}},
+                 "sweep.job.params.nozle: unknown parameter"},
         BadSweep{"bad_generator", nlohmann::json{{"job", {{"generator", "nope"}}}, {"vary", {{"a", {1}}}}}, "sweep.job.generator = nope"}),
     [](const auto& info) { return std::string(info.param.name); });
 
