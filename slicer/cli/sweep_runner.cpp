@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 
 #include "postprocess/gcode_parser.h"
@@ -112,19 +113,31 @@ nlohmann::json run_point(const SweepSpec& s, const SweepPoint& p, const SweepOpt
   return row;
 }
 
-std::map<std::string, nlohmann::json> previous_rows(const std::string& path) {
+// Rows of earlier runs: the manifest, then the journal of a run that was interrupted
+// before writing it (newer, so it wins). Unreadable input only means less is reused; a
+// torn last journal line is skipped.
+std::map<std::string, nlohmann::json> previous_rows(const fs::path& manifest, const fs::path& journal) {
   std::map<std::string, nlohmann::json> rows;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return rows;
   try {
-    const nlohmann::json manifest = nlohmann::json::parse(slicer::read_file(path));
-    for (const auto& r : manifest.at("points")) {
-      rows[r.at("name").get<std::string>()] = r;
+    if (fs::is_regular_file(manifest, ec)) {
+      const nlohmann::json m = nlohmann::json::parse(slicer::read_file(manifest.string()));
+      for (const auto& r : m.at("points")) rows[r.at("name").get<std::string>()] = r;
     }
   } catch (const std::exception&) {
-    rows.clear();  // an unreadable old manifest only means nothing is reused
+    rows.clear();
+  }
+  std::ifstream in(journal);
+  for (std::string line; std::getline(in, line);) {
+    const nlohmann::json r = nlohmann::json::parse(line, nullptr, false);
+    if (r.is_object() && r.contains("name") && r["name"].is_string()) rows[r["name"].get<std::string>()] = r;
   }
   return rows;
+}
+
+fs::path journal_path(const SweepOptions& o) {
+  std::string name = manifest_file_name(o.shard);
+  return fs::path(o.dir) / (name.substr(0, name.size() - 5) + ".journal.jsonl");
 }
 
 }  // namespace
@@ -146,7 +159,10 @@ SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const
   std::error_code ec;
   fs::create_directories(fs::path(o.dir) / (o.previews ? "previews" : ""), ec);
   if (ec) throw InputError("-o = " + o.dir + ": cannot create the directory");
-  const auto prev = previous_rows((fs::path(o.dir) / manifest_file_name(o.shard)).string());
+  const fs::path journal_file = journal_path(o);
+  const auto prev = previous_rows(fs::path(o.dir) / manifest_file_name(o.shard), journal_file);
+  // Finished points are journalled as they complete, so an interrupted sweep resumes.
+  std::ofstream journal(journal_file, std::ios::app);
   std::vector<nlohmann::json> rows(points.size());
   std::mutex m;
   SweepProgress state;
@@ -159,6 +175,7 @@ SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const
       bool reused = false;
       rows[i] = run_point(spec, points[i], o, it == prev.end() ? nullptr : &it->second, reused);
       const std::lock_guard<std::mutex> lock(m);
+      if (rows[i].at("status") == "ok") journal << rows[i].dump() << "\n" << std::flush;
       ++state.done;
       state.failed += rows[i].at("status") == "failed";
       state.reused += reused;
@@ -169,6 +186,8 @@ SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const
   SweepResult r;
   r.manifest = make_manifest(spec, source, rows, o.shard);
   write_manifest(r.manifest, o.dir, o.shard);
+  journal.close();
+  fs::remove(journal_file, ec);
   for (const auto& row : rows) {
     r.failed += row.at("status") == "failed";
     r.dropped += row.at("status") == "dropped";

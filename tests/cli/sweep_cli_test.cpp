@@ -129,6 +129,25 @@ TEST(SweepCli, RerunSkipsUpToDatePointsAndRedoesChangedFiles) {
   EXPECT_TRUE(before == tree(dir + "/out"));
 }
 
+TEST(SweepCli, AnInterruptedSweepResumesFromItsJournal) {
+  const auto dir = fresh_dir("sweep-journal");
+  ASSERT_EQ(run_strand("sweep " + kSample + " -o out", dir).exit_code, 0);
+  EXPECT_FALSE(exists(dir + "/out/manifest.journal.jsonl"));
+  const auto before = tree(dir + "/out");
+  // As if killed before the manifest: finished points only in the journal, last line torn.
+  std::string journal;
+  const auto manifest = nlohmann::json::parse(slurp(dir + "/out/manifest.json"));
+  for (const auto& row : manifest.at("points")) {
+    if (row.at("status") == "ok") journal += row.dump() + "\n";
+  }
+  fs::remove(dir + "/out/manifest.json");
+  write(dir + "/out/manifest.journal.jsonl", journal + "{\"name\": \"scaff");
+  const auto r = run_strand("sweep " + kSample + " -o out", dir);
+  EXPECT_NE(r.out.find("0 ran, 5 up to date"), std::string::npos) << r.out << r.err;
+  EXPECT_FALSE(exists(dir + "/out/manifest.journal.jsonl"));
+  EXPECT_TRUE(before == tree(dir + "/out"));
+}
+
 TEST(SweepCli, AFailedPointIsListedAndTheOthersStillRun) {
   const auto dir = fresh_dir("sweep-fail");
   write(dir + "/s.json", R"({"job": {"generator": "scaffold", "params": {"nozzle": 0.84, "gap": 1.6, "height": 3}, "report": "r.json"},
