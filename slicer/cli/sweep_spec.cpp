@@ -95,6 +95,26 @@ void apply_where(const SweepSpec& s, SweepPoint& p) {
   }
 }
 
+// "where": a list of constraint strings over number parameters of the generator.
+std::vector<Constraint> parse_where(const nlohmann::json& where, const SweepSpec& s) {
+  const auto& table = s.job.generator->table();
+  if (!where.is_array()) throw InputError("sweep.where: must be a list of strings such as \"gap >= nozzle\"");
+  std::vector<Constraint> out;
+  for (std::size_t c = 0; c < where.size(); ++c) {
+    const std::string path = "sweep.where[" + std::to_string(c) + "]";
+    if (!where[c].is_string()) throw InputError(path + ": must be a string such as \"gap >= nozzle\"");
+    out.push_back(parse_constraint(where[c].get<std::string>(), path));
+    for (const auto& name : out.back().names) {
+      const auto* d = find_def(table, name);
+      if (!d || (d->type != slicer::ParamType::Number && d->type != slicer::ParamType::Integer)) {
+        throw InputError(path + " = \"" + where[c].get<std::string>() + "\": " + name +
+                         " is not a number parameter of " + s.job.generator->name);
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<nlohmann::json> range_values(const nlohmann::json& r, const std::string& where) {
@@ -154,20 +174,7 @@ SweepSpec sweep_spec_from_json(const nlohmann::json& j) {
                        std::to_string(s.values[0].size()) + ")");
     }
   }
-  const nlohmann::json where = j.value("where", nlohmann::json::array());
-  if (!where.is_array()) throw InputError("sweep.where: must be a list of strings such as \"gap >= nozzle\"");
-  for (std::size_t c = 0; c < where.size(); ++c) {
-    const std::string path = "sweep.where[" + std::to_string(c) + "]";
-    if (!where[c].is_string()) throw InputError(path + ": must be a string such as \"gap >= nozzle\"");
-    s.where.push_back(parse_constraint(where[c].get<std::string>(), path));
-    for (const auto& name : s.where.back().names) {
-      const auto* d = find_def(table, name);
-      if (!d || (d->type != slicer::ParamType::Number && d->type != slicer::ParamType::Integer)) {
-        throw InputError(path + " = \"" + where[c].get<std::string>() + "\": " + name +
-                         " is not a number parameter of " + s.job.generator->name);
-      }
-    }
-  }
+  s.where = parse_where(j.value("where", nlohmann::json::array()), s);
   const std::string out = s.job.settings.output;
   s.stem = out.empty() ? s.job.generator->name : std::filesystem::path(out).stem().string();
   return s;
