@@ -23,6 +23,7 @@ canvas{position:absolute;top:0;left:0;cursor:grab}
 <label>layer <input id="layer" type="range" min="0" max="0" value="0"> <span id="layerText"></span></label>
 <label><input id="only" type="checkbox"> this layer only</label>
 <label><input id="travel" type="checkbox"> travel</label>
+<label>colour <select id="colour"><option value="feature">feature</option><option value="layer">layer</option></select></label>
 <button id="fit">fit</button> <span id="legend"></span> <span id="status">loading</span></div>
 <canvas id="view"></canvas>
 <script id="scene" type="application/json">@DATA@</script>
@@ -33,13 +34,26 @@ window.addEventListener('error', e => { statusEl.textContent = 'error: ' + e.mes
 const scene = JSON.parse(document.getElementById('scene').textContent);
 const canvas = document.getElementById('view'), ctx = canvas.getContext('2d');
 const layerIn = document.getElementById('layer'), onlyIn = document.getElementById('only'), travelIn = document.getElementById('travel');
-const nLayers = Math.max(1, scene.layers.length);
+const colourIn = document.getElementById('colour');
+function layerColour(l) {  // as post::layer_colour: blue (first layer) to red (last)
+  const t = nLayersAll > 1 ? l / (nLayersAll - 1) : 0, c = v => Math.round(255 * v);
+  return 'rgb(' + c(0.15 + 0.8 * t) + ',' + c(0.3 + 0.3 * (1 - Math.abs(2 * t - 1))) + ',' + c(0.95 - 0.8 * t) + ')';
+}
+function scaleBar() {  // 1, 2 or 5 x 10^k mm, about a fifth of the window
+  const target = canvas.width / view.scale / 5, p = Math.pow(10, Math.floor(Math.log10(target)));
+  const mm = [5, 2, 1].map(m => m * p).find(v => v <= target) || p, px = mm * view.scale, y = canvas.height - 20;
+  ctx.strokeStyle = '#222'; ctx.lineWidth = 2; ctx.beginPath();
+  ctx.moveTo(20, y - 6); ctx.lineTo(20, y); ctx.lineTo(20 + px, y); ctx.lineTo(20 + px, y - 6); ctx.stroke();
+  ctx.fillStyle = '#222'; ctx.font = '13px sans-serif'; ctx.fillText(mm + ' mm', 28 + px, y);
+}
+const nLayers = Math.max(1, scene.layers.length), nLayersAll = scene.layers.length;
 layerIn.max = nLayers - 1; layerIn.value = nLayers - 1;
 let view = {scale: 1, x: 0, y: 0};
 function fit() {
-  const b = scene.bounds, w = canvas.width, h = canvas.height - 40;
+  const top = document.getElementById('bar').offsetHeight, bottom = 30;  // tool bar, scale bar
+  const b = scene.bounds, w = canvas.width, h = canvas.height - top - bottom;
   const s = Math.min(w / Math.max(b[2] - b[0], 1e-3), h / Math.max(b[3] - b[1], 1e-3)) * 0.9;
-  view = {scale: s, x: w / 2 - s * (b[0] + b[2]) / 2, y: 40 + h / 2 + s * (b[1] + b[3]) / 2};
+  view = {scale: s, x: w / 2 - s * (b[0] + b[2]) / 2, y: top + h / 2 + s * (b[1] + b[3]) / 2};
 }
 function draw() {
   const top = +layerIn.value, only = onlyIn.checked, travel = travelIn.checked;
@@ -48,7 +62,7 @@ function draw() {
   let n = 0;
   for (const p of scene.paths) {
     if (p.l > top || (only && p.l !== top) || (p.t && !travel)) continue;
-    ctx.strokeStyle = p.t ? '#888' : scene.colours[p.f];
+    ctx.strokeStyle = p.t ? '#888' : (colourIn.value === 'layer' ? layerColour(p.l) : scene.colours[p.f]);
     ctx.lineWidth = p.t ? 1 : Math.max(1, scene.width * view.scale);
     ctx.globalAlpha = (only || p.l === top || p.t) ? 1 : 0.55;
     ctx.beginPath();
@@ -59,6 +73,7 @@ function draw() {
     ctx.stroke(); n++;
   }
   ctx.globalAlpha = 1;
+  scaleBar();
   const z = scene.layers.length ? scene.layers[top] : 0;
   document.getElementById('layerText').textContent = top + ' (z ' + z + ' mm)';
   statusEl.textContent = 'drawn: ' + n + ' paths, layers ' + (only ? top : 0) + '-' + top;
@@ -74,7 +89,7 @@ canvas.addEventListener('wheel', e => {
   view.x = e.clientX - k * (e.clientX - view.x); view.y = e.clientY - k * (e.clientY - view.y);
   view.scale *= k; draw();
 }, {passive: false});
-for (const el of [layerIn, onlyIn, travelIn]) el.addEventListener('input', draw);
+for (const el of [layerIn, onlyIn, travelIn, colourIn]) el.addEventListener('input', draw);
 document.getElementById('fit').addEventListener('click', () => { fit(); draw(); });
 window.addEventListener('resize', () => { resize(); draw(); });
 const legend = document.getElementById('legend');

@@ -1,5 +1,6 @@
 // Interactive HTML preview: one self-contained file (no network) with a layer slider,
-// feature colours, zoom/pan and a travel toggle, drawn on a canvas by an inline script.
+// feature (or layer) colours, zoom/pan, a travel toggle and a scale bar in mm, drawn on a
+// canvas by an inline script.
 #pragma once
 
 #include <string>
