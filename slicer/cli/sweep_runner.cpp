@@ -144,8 +144,8 @@ fs::path journal_path(const SweepOptions& o) {
 
 std::string thumbnail_png(const post::PreviewScene& scene) {
   post::ImageOptions o;
-  o.width_px = 480;
-  o.height_px = 400;
+  o.width_px = 360;  // shown at 240 x 200 on the contact sheet; PNG encoding dominates the cost
+  o.height_px = 300;
   o.view = post::PreviewView::Top;
   return post::render_png(scene, o);
 }
