@@ -1,5 +1,6 @@
 // strand: toolpaths for Direct Ink Writing and pen plotting. Exit codes: 0 ok,
-// 1 a check found problems, 2 bad input (one line on stderr, no output file).
+// 1 a check found problems (or a sweep point failed), 2 bad input (one line on stderr,
+// no output file).
 #include <CLI/CLI.hpp>
 #include <iostream>
 
