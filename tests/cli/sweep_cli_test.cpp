@@ -109,6 +109,16 @@ TEST(SweepCli, ShardsMergedEqualTheUnshardedRun) {
   EXPECT_TRUE(whole == parts);
 }
 
+TEST(SweepCli, MergeTakesShardFilesAsArguments) {
+  const auto dir = fresh_dir("sweep-merge-args");
+  ASSERT_EQ(run_strand("sweep " + kSample + " -o whole", dir).exit_code, 0);
+  for (const char* s : {"1/2", "2/2"}) ASSERT_EQ(run_strand("sweep " + kSample + " -o parts --shard " + s, dir).exit_code, 0);
+  const auto r = run_strand("sweep --merge parts/manifest-shard-2-of-2.json parts/manifest-shard-1-of-2.json -o parts", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(dir + "/parts/manifest.json"), slurp(dir + "/whole/manifest.json"));
+  EXPECT_EQ(slurp(dir + "/parts/manifest.csv"), slurp(dir + "/whole/manifest.csv"));
+}
+
 TEST(SweepCli, MergeRejectsAMissingShard) {
   const auto dir = fresh_dir("sweep-merge-missing");
   ASSERT_EQ(run_strand("sweep " + kSample + " -o parts --shard 1/2", dir).exit_code, 0);
