@@ -65,6 +65,9 @@ function sortCards(){
   cards.forEach(c=>sheet.appendChild(c));
 }
 document.getElementById('key').onchange=sortCards;document.getElementById('dir').onchange=sortCards;
+window.addEventListener('load',()=>{const imgs=[...document.querySelectorAll('#sheet img')];
+  document.getElementById('status').textContent='cards: '+document.getElementById('sheet').children.length+
+    ', thumbnails shown: '+imgs.filter(i=>i.complete&&i.naturalWidth>0).length;});
 </script></body></html>
 )";
 
@@ -129,7 +132,8 @@ std::string sweep_index_html(const nlohmann::json& m) {
   h += "<h1>Sweep: " + esc(s.at("generator").get<std::string>()) + " on " + esc(s.at("machine").get<std::string>()) + "</h1>\n";
   if (s.contains("description")) h += "<p>" + esc(s.at("description").get<std::string>()) + "</p>\n";
   h += "<p>" + std::to_string(ok) + " ok, " + std::to_string(failed) + " failed, " + std::to_string(dropped) +
-       " dropped; <a href=\"manifest.csv\">manifest.csv</a>, <a href=\"manifest.json\">manifest.json</a></p>\n";
+       " dropped; <a href=\"manifest.csv\">manifest.csv</a>, <a href=\"manifest.json\">manifest.json</a>"
+       " <span id=\"status\"></span></p>\n";
   h += "<p>Sort by <select id=\"key\"><option value=\"index\">point</option>";
   for (const auto& k : keys) h += "<option value=\"" + data_key(k.get<std::string>()) + "\">" + esc(k.get<std::string>()) + "</option>";
   for (const char* f : {"porosity", "ink_volume_ml", "time_s", "layers"}) h += "<option value=\"" + data_key(f) + "\">" + f + "</option>";

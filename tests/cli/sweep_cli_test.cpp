@@ -8,6 +8,7 @@
 #include <set>
 
 #include "slicer/cli/content_hash.h"
+#include "tests/support/chromium.h"
 #include "tests/support/cli_runner.h"
 
 namespace strand::testing {
@@ -82,6 +83,15 @@ TEST(SweepCli, HundredPointsEachRowMatchesItsFile) {
     if (e.path().extension() == ".gcode") on_disk.insert(e.path().filename().string());
   }
   EXPECT_EQ(listed, on_disk);
+}
+
+TEST(SweepCli, ChromiumShowsEverySpecimenOnTheContactSheet) {
+  if (chromium_path().empty()) GTEST_SKIP() << "chromium is not installed (apt-get install chromium)";
+  const auto dir = fresh_dir("sweep-index");
+  ASSERT_EQ(run_strand("sweep " + kSample + " -o out", dir).exit_code, 0);
+  const auto r = run_chromium(dir, "--dump-dom", dir + "/out/index.html");
+  EXPECT_NE(r.out.find("cards: 6, thumbnails shown: 5"), std::string::npos) << r.out.substr(0, 600);
+  EXPECT_FALSE(has_console_output(r.log)) << r.log;
 }
 
 TEST(SweepCli, OneAndTwoWorkersGiveIdenticalFiles) {

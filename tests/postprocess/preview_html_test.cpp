@@ -5,11 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include <cstdlib>
-#include <filesystem>
 #include <fstream>
 
 #include "postprocess/gcode_parser.h"
+#include "tests/support/chromium.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/png_pixels.h"
 
@@ -17,28 +16,6 @@ namespace strand::post {
 namespace {
 
 using strand::testing::slurp;
-
-std::string chromium_path() {
-  for (const char* p : {"/usr/bin/chromium", "/usr/bin/chromium-browser"}) {
-    if (std::filesystem::exists(p)) return p;
-  }
-  return "";
-}
-
-// Runs headless Chromium on `page` with `mode` (--screenshot=... or --dump-dom); returns
-// stdout, stderr in `err`.
-std::string chromium(const std::string& dir, const std::string& mode, const std::string& page, std::string& err) {
-  const std::string profile = dir + "/profile-" + std::to_string(std::rand());
-  const std::string cmd = "timeout 90 '" + chromium_path() +
-                          "' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
-                          " --disable-background-networking --disable-component-update --disable-sync"
-                          " --enable-logging=stderr --v=0 --window-size=900,700 --user-data-dir='" + profile +
-                          "' " + mode + " 'file://" + page + "' >'" + dir + "/out.txt' 2>'" + dir + "/err.txt'";
-  const int status = std::system(cmd.c_str());
-  EXPECT_EQ(status, 0) << cmd;
-  err = slurp(dir + "/err.txt");
-  return slurp(dir + "/out.txt");
-}
 
 std::string sample_page(const std::string& dir) {
   std::string gcode = ";LAYER:0\nG0 X0 Y0 Z0.5\n;WIDTH:0.8\n";
@@ -49,15 +26,6 @@ std::string sample_page(const std::string& dir) {
   const std::string path = dir + "/preview.html";
   std::ofstream(path) << render_html(preview_scene(parse_gcode(gcode).program, 0.01), "serpentine.gcode");
   return path;
-}
-
-// The page logs nothing, so any console line counts; Chromium writes them to stderr as
-// "INFO:CONSOLE:1] \"message\"" (older builds: "CONSOLE(1)").
-bool console_error(const std::string& log) {
-  for (const char* bad : {"Uncaught", ":CONSOLE", "CONSOLE(", "SyntaxError", "TypeError", "ReferenceError"}) {
-    if (log.find(bad) != std::string::npos) return true;
-  }
-  return false;
 }
 
 TEST(PreviewHtml, IsSelfContained) {
@@ -71,15 +39,15 @@ TEST(PreviewHtml, IsSelfContained) {
 }
 
 TEST(PreviewHtml, ChromiumDrawsTheToolpathWithoutConsoleErrors) {
-  if (chromium_path().empty()) GTEST_SKIP() << "chromium is not installed (apt-get install chromium)";
+  if (strand::testing::chromium_path().empty()) GTEST_SKIP() << "chromium is not installed (apt-get install chromium)";
   const auto dir = strand::testing::fresh_dir("html-chromium");
   const std::string page = sample_page(dir);
-  std::string err;
-  const std::string dom = chromium(dir, "--dump-dom", page, err);
-  EXPECT_NE(dom.find("drawn: 1 paths, layers 0-0"), std::string::npos) << dom.substr(0, 400);
-  EXPECT_FALSE(console_error(err)) << err;
-  chromium(dir, "--screenshot='" + dir + "/shot.png'", page, err);
-  EXPECT_FALSE(console_error(err)) << err;
+  const auto dom = strand::testing::run_chromium(dir, "--dump-dom", page);
+  EXPECT_EQ(dom.exit_code, 0);
+  EXPECT_NE(dom.out.find("drawn: 1 paths, layers 0-0"), std::string::npos) << dom.out.substr(0, 400);
+  EXPECT_FALSE(strand::testing::has_console_output(dom.log)) << dom.log;
+  const auto shot = strand::testing::run_chromium(dir, "--screenshot='" + dir + "/shot.png'", page);
+  EXPECT_FALSE(strand::testing::has_console_output(shot.log)) << shot.log;
   const auto st = strand::testing::png_stats(slurp(dir + "/shot.png"));
   ASSERT_GT(st.width, 0) << "no screenshot";
   // The filled 20 x 20 mm square takes a good part of the 900 x 700 window.
