@@ -24,6 +24,7 @@ struct PreviewArgs {
   std::string colour = "feature";
   std::string view = "both";
   bool travel = false;
+  bool lines = false;
   std::string size = "1200x700";
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
 };
@@ -74,7 +75,7 @@ int run(const PreviewArgs& a) {
   if (ext == ".png") bytes = post::render_png(scene, o);
   if (ext == ".svg") bytes = post::render_svg(scene, o);
   if (ext == ".html") bytes = post::render_html(scene, std::filesystem::path(a.input).filename().string());
-  if (ext == ".glb") bytes = post::render_glb(scene);
+  if (ext == ".glb") bytes = post::render_glb(scene, {.tubes = !a.lines});
   slicer::write_file_atomic(a.output, bytes);
   std::cout << "preview " << a.input << " -> " << a.output << " (" << scene.layer_z_mm.size() << " layers, "
             << scene.paths.size() << " paths)\n";
@@ -92,6 +93,7 @@ void add_preview_command(CLI::App& app, Action& action) {
   sub->add_option("--colour", a->colour, "colour by feature or layer (png/svg; default feature)");
   sub->add_option("--view", a->view, "top, iso or both side by side (png/svg; default both)");
   sub->add_flag("--travel", a->travel, "also draw travel moves (png/svg)");
+  sub->add_flag("--lines", a->lines, "glb: strands as lines instead of tubes");
   sub->add_option("--size", a->size, "image size WxH in pixels (png/svg; default 1200x700)");
   sub->add_option("--arc-tolerance", a->arc_tolerance_mm, "chord error when drawing G2/G3 arcs [mm] (default 0.01)");
   sub->callback([&action, a] { action = [a] { return run(*a); }; });
