@@ -24,10 +24,17 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A machine given as a file path counts by its content, so editing the profile reruns.
+std::string machine_key(const std::string& machine) {
+  std::error_code ec;
+  if (!fs::is_regular_file(machine, ec)) return machine;
+  return machine + "#" + fnv1a_hex(slicer::read_file(machine));
+}
+
 std::string params_hash(const SweepSpec& s, const SweepPoint& p) {
   const nlohmann::json key = {{"strand", STRAND_VERSION},
                               {"generator", s.job.generator->name},
-                              {"machine", s.job.settings.machine},
+                              {"machine", machine_key(s.job.settings.machine)},
                               {"arc-tolerance", s.job.settings.arc_tolerance_mm},
                               {"params", p.params}};
   return fnv1a_hex(key.dump());

@@ -32,8 +32,9 @@ struct SweepResult {
 };
 
 // A point is up to date, and is not run again, when the manifest already in `dir` lists it
-// as ok with the same parameters hash (generator, machine, arc tolerance, parameters and
-// Strand version) and its G-code is present with the recorded content hash.
+// as ok with the same parameters hash (generator, machine name or profile file content,
+// arc tolerance, parameters and Strand version) and its G-code is present with the
+// recorded content hash.
 // Each finished point is also appended to DIR/manifest[-shard-I-of-N].journal.jsonl, read
 // like the manifest on the next run and removed once the manifest is written, so a sweep
 // interrupted before its manifest resumes where it stopped.

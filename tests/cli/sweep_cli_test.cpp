@@ -149,6 +149,20 @@ TEST(SweepCli, RerunSkipsUpToDatePointsAndRedoesChangedFiles) {
   EXPECT_TRUE(before == tree(dir + "/out"));
 }
 
+TEST(SweepCli, EditingAMachineProfileFileRerunsThePoints) {
+  const auto dir = fresh_dir("sweep-machine");
+  std::string profile = slurp(std::string(STRAND_SOURCE_DIR) + "/machines/profiles/marlin-xyz-200.json");
+  write(dir + "/m.json", profile);
+  write(dir + "/s.json", R"({"job": {"generator": "scaffold", "machine": "m.json",
+    "params": {"nozzle": 0.84, "size": "12x12", "height": 2}}, "vary": {"gap": [1.0, 1.6]}})");
+  ASSERT_EQ(run_strand("sweep s.json -o out --no-previews", dir).exit_code, 0);
+  EXPECT_NE(run_strand("sweep s.json -o out --no-previews", dir).out.find("0 ran, 2 up to date"), std::string::npos);
+  profile.replace(profile.find("Generic Cartesian"), 7, "Edited ");
+  write(dir + "/m.json", profile);
+  const auto r = run_strand("sweep s.json -o out --no-previews", dir);
+  EXPECT_NE(r.out.find("2 ran, 0 up to date"), std::string::npos) << r.out << r.err;
+}
+
 TEST(SweepCli, AnInterruptedSweepResumesFromItsJournal) {
   const auto dir = fresh_dir("sweep-journal");
   ASSERT_EQ(run_strand("sweep " + kSample + " -o out", dir).exit_code, 0);
