@@ -2,7 +2,8 @@
 # As root, missing Debian packages are installed with apt-get; otherwise they are listed.
 
 DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev libcli11-dev \
-                   libgtest-dev libbenchmark-dev libpugixml-dev libpolyclipping-dev
+                   libgtest-dev libbenchmark-dev libpugixml-dev libpolyclipping-dev libtbb-dev \
+                   libcairo2-dev libtinygltf-dev chromium
 MAKEFLAGS += --no-print-directory
 BUILD_DIR := build
 STRAND := $(BUILD_DIR)/slicer/cli/strand

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# The main demo: runs every job file in samples/ into OUT (G-code, JSON report, summary).
+# The main demo: runs every job file in samples/ into OUT (G-code, JSON report, summary),
+# draws previews of each job's G-code, and runs every sweep in samples/sweeps/ into
+# OUT/<sweep name>/ (G-code per point, manifest, index.html contact sheet).
 # Usage: samples/run_demo.sh path/to/strand OUT
 set -euo pipefail
 strand="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
@@ -14,6 +16,13 @@ for job in "$samples"/*.json; do
   machine="$(sed -n 's/.*"machine": *"\([^"]*\)".*/\1/p' "$job")"
   "$strand" check "$name.gcode" --machine "$machine" --svg-layer 1 "$name-layer1.svg" > "$name-check.txt"
   tail -n 1 "$name-check.txt"
+  for ext in png svg html glb; do "$strand" preview "$name.gcode" -o "$name-preview.$ext"; done
 done
 "$strand" plot "$samples/plot/shapes.svg" --machine xy-plotter-servo --fit 380x260 -o plot-shapes.gcode --report plot-shapes.json | tee plot-shapes-summary.txt
-echo "demo output in $(pwd)"
+"$strand" check plot-shapes.gcode --machine xy-plotter-servo | tail -n 1
+for ext in png html; do "$strand" preview plot-shapes.gcode -o "plot-shapes-preview.$ext"; done
+for sweep in "$samples"/sweeps/*.json; do
+  [ -e "$sweep" ] || continue
+  "$strand" sweep "$sweep" -o "$(basename "$sweep" .json)"
+done
+echo "demo output in $(pwd); sweeps: $(pwd)/*/index.html"

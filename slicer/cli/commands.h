@@ -16,5 +16,7 @@ void add_machines_command(CLI::App& app, Action& action);
 void add_plot_command(CLI::App& app, Action& action);
 void add_check_command(CLI::App& app, Action& action);
 void add_flow_command(CLI::App& app, Action& action);
+void add_sweep_command(CLI::App& app, Action& action);
+void add_preview_command(CLI::App& app, Action& action);
 
 }  // namespace strand::cli

@@ -6,8 +6,8 @@
 
 #include "machines/profile.h"
 #include "patterns/registry.h"
-#include "postprocess/produce.h"
 #include "slicer/cli/commands.h"
+#include "slicer/cli/job_runner.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/params.h"
@@ -39,40 +39,15 @@ std::string help_for(const slicer::ParamDef& d) {
   return h;
 }
 
-struct JobSettings {
-  std::string machine = "deltawasp-2040-clay";
-  std::string output;
-  std::string report;
-  double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
-  bool viewer_e = false;
-};
-
-// "out/x.gcode" -> "out/x.viewer-e.gcode": the preview-only copy beside the printable file.
-std::string viewer_path(const std::string& out) {
-  const auto dot = out.rfind('.');
-  const auto slash = out.find_last_of("/\\");
-  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
-  return (has_ext ? out.substr(0, dot) : out) + ".viewer-e.gcode";
-}
-
 // The shared tail of `strand <generator>` and `strand job`: nothing is written unless
 // every step succeeded.
-int run_job(const patterns::GeneratorSpec& spec, const nlohmann::json& given, const JobSettings& s) {
-  if (!(s.arc_tolerance_mm > 0.0 && s.arc_tolerance_mm <= 1.0)) {
-    throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) + ": must be in (0, 1] (mm)");
+int run_and_print(const patterns::GeneratorSpec& spec, const nlohmann::json& given,
+                  const JobSettings& s) {
+  std::cout << run_job(spec, given, s).summary;
+  if (s.viewer_e) {
+    std::cout << "  preview copy   " << viewer_output_path(job_output_path(spec, s))
+              << " (computed E, not for printing)\n";
   }
-  const nlohmann::json values = slicer::resolve_params(spec.table(), given);
-  const slicer::Toolpath t = spec.generate(values);
-  const machines::MachineProfile machine = machines::load_profile(s.machine);
-  const std::string out = s.output.empty() ? spec.name + ".gcode" : s.output;
-  const auto produced =
-      post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm), out, s.viewer_e);
-  const std::string report = produced.report.dump(2) + "\n";
-  slicer::write_file_atomic(out, produced.gcode);
-  if (s.viewer_e) slicer::write_file_atomic(viewer_path(out), produced.viewer_gcode);
-  if (!s.report.empty()) slicer::write_file_atomic(s.report, report);
-  std::cout << produced.summary;
-  if (s.viewer_e) std::cout << "  preview copy   " << viewer_path(out) << " (computed E, not for printing)\n";
   return 0;
 }
 
@@ -82,7 +57,7 @@ int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
   for (const auto& d : table.defs) {
     if (a.options.at(d.key)->count() > 0) given[d.key] = slicer::parse_param_text(table, d, a.text.at(d.key));
   }
-  return run_job(spec, given, {a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e});
+  return run_and_print(spec, given, {a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e});
 }
 
 // Job file: {"generator", "machine", "params": {flag: value}, "output", "report",
@@ -97,27 +72,8 @@ nlohmann::json read_job(const std::string& path) {
 
 int run_job_json(const nlohmann::json& j, const std::string& path) {
   if (!j.is_object()) throw InputError("job = " + path + ": must be a JSON object");
-  std::vector<std::string> problems;
-  for (const auto& [k, v] : j.items()) {
-    if (k != "generator" && k != "machine" && k != "params" && k != "output" && k != "report" &&
-        k != "arc-tolerance" && k != "description") {
-      problems.push_back("job." + k + ": unknown key (generator, machine, params, output, report, arc-tolerance, description)");
-    }
-  }
-  if (!problems.empty()) throw InputError(problems);
-  const std::string name = j.value("generator", std::string());
-  const patterns::GeneratorSpec* spec = patterns::find_generator(name);
-  if (!spec) {
-    std::string names;
-    for (const auto& g : patterns::generators()) names += (names.empty() ? "" : ", ") + g.name;
-    throw InputError("job.generator = " + name + ": must be one of " + names);
-  }
-  JobSettings s;
-  s.machine = j.value("machine", s.machine);
-  s.output = j.value("output", std::string());
-  s.report = j.value("report", std::string());
-  s.arc_tolerance_mm = j.value("arc-tolerance", s.arc_tolerance_mm);
-  return run_job(*spec, j.value("params", nlohmann::json::object()), s);
+  const JobSpec job = job_spec_from_json(j, "job");
+  return run_and_print(*job.generator, job.params, job.settings);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // strand: toolpaths for Direct Ink Writing and pen plotting. Exit codes: 0 ok,
-// 1 a check found problems, 2 bad input (one line on stderr, no output file).
+// 1 a check found problems (or a sweep point failed), 2 bad input (one line on stderr,
+// no output file).
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -16,6 +17,8 @@ int main(int argc, char** argv) {
   strand::cli::add_plot_command(app, action);
   strand::cli::add_check_command(app, action);
   strand::cli::add_flow_command(app, action);
+  strand::cli::add_sweep_command(app, action);
+  strand::cli::add_preview_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

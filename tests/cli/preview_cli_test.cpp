@@ -1,0 +1,64 @@
+// `strand preview` from the outside: every extension from one G-code, bad input.
+#include <gtest/gtest.h>
+
+#include "tests/support/cli_runner.h"
+#include "tests/support/png_pixels.h"
+
+namespace strand::testing {
+namespace {
+
+const std::string kScaffold = "scaffold --nozzle 0.84 --gap 1.6 --size 20x20 --height 3 -o s.gcode --report s.json";
+
+TEST(PreviewCli, WritesEachFormatFromAnyGcode) {
+  const auto dir = fresh_dir("preview");
+  ASSERT_EQ(run_strand(kScaffold, dir).exit_code, 0);
+  for (const char* ext : {"png", "svg", "html", "glb"}) {
+    const auto r = run_strand(std::string("preview s.gcode -o p.") + ext, dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+  }
+  const auto png = png_stats(slurp(dir + "/p.png"));
+  EXPECT_EQ(png.width, 1200);
+  EXPECT_GT(png.drawn_fraction, 0.05);
+  EXPECT_NE(slurp(dir + "/p.svg").find("<svg"), std::string::npos);
+  EXPECT_EQ(slurp(dir + "/p.glb").substr(0, 4), "glTF");
+}
+
+TEST(PreviewCli, OneLayerDrawsLessThanAll) {
+  const auto dir = fresh_dir("preview-layer");
+  ASSERT_EQ(run_strand(kScaffold, dir).exit_code, 0);
+  ASSERT_EQ(run_strand("preview s.gcode -o all.png --view top", dir).exit_code, 0);
+  ASSERT_EQ(run_strand("preview s.gcode -o one.png --view top --layer 0", dir).exit_code, 0);
+  EXPECT_LT(png_stats(slurp(dir + "/one.png")).drawn_fraction, png_stats(slurp(dir + "/all.png")).drawn_fraction);
+}
+
+struct BadCase {
+  const char* name;
+  const char* args;
+  const char* must_mention;
+};
+
+class PreviewBadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(PreviewBadInput, ExitTwoOneLineNoFile) {
+  const auto dir = fresh_dir("preview-bad");
+  ASSERT_EQ(run_strand(kScaffold, dir).exit_code, 0);
+  const auto r = run_strand(GetParam().args, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(GetParam().must_mention), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "exactly one line: " << r.err;
+  EXPECT_FALSE(exists(dir + "/out.png"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, PreviewBadInput,
+    ::testing::Values(
+        BadCase{"unreadable", "preview missing.gcode -o out.png", "input = missing.gcode: cannot read"},
+        BadCase{"not_gcode", "preview s.json -o out.png", "input = s.json: no moves"},
+        BadCase{"extension", "preview s.gcode -o out.bmp", "--output = out.bmp"},
+        BadCase{"layer", "preview s.gcode -o out.png --layer 99", "layer = 99"},
+        BadCase{"view", "preview s.gcode -o out.png --view side", "--view = side"},
+        BadCase{"size", "preview s.gcode -o out.png --size 0x10", "--size = 0x10"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace strand::testing
