@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "patterns/missing_rib.h"
+#include "patterns/layer_params.h"
 #include "slicer/input_error.h"
 #include "slicer/units.h"
 
@@ -13,7 +14,7 @@ using slicer::ParamDef;
 using slicer::ParamType;
 
 const slicer::ParamTable& missing_rib_table() {
-  static const slicer::ParamTable kTable = {
+  static const slicer::ParamTable kTable = with_layer_rows({
       "missing-rib",
       {
           {"nozzle", ParamType::Number, "mm", "filament (nozzle) diameter d; required", 0.0, true, 10.0},
@@ -22,27 +23,14 @@ const slicer::ParamTable& missing_rib_table() {
           {"node-gap", ParamType::Number, "mm", "distance between the two passes that turn at a node (their corners are cut); 0 = they meet on the node, nozzle = beads touch side by side", 0.0, false, 10.0, false, nullptr, "nozzle"},
           {"rows", ParamType::Integer, "", "cells along y", 1.0, false, 1000.0, false, 4},
           {"cols", ParamType::Integer, "", "cells along x", 1.0, false, 1000.0, false, 4},
-          {"height", ParamType::Number, "mm", "part height, rounded to whole layers; give --height or --layers", 0.0, true, 10000.0},
-          {"layers", ParamType::Integer, "", "number of layers; give --height or --layers", 1.0, false, 100000.0},
-          {"layer-height", ParamType::Number, "mm", "layer height h, allowed 0.5*nozzle to 1.0*nozzle", 0.0, true, 10.0, false, nullptr, "0.8 * nozzle"},
-          {"speed", ParamType::Number, "mm/min", "print speed", 0.0, true, 100000.0, false, 250.0},
           {"ligament-speed-factor", ParamType::Number, "", "speed factor on ribs (the frame runs at --speed)", 0.0, true, 10.0, false, 1.0},
-      }};
+      }}, "0.8 * nozzle");
   return kTable;
 }
 
 namespace {
 
 const char* kName = "missing-rib";
-
-void require_one_of(const nlohmann::json& v, const char* a, const char* b, std::vector<std::string>& problems) {
-  if (v.contains(a) && v.contains(b)) {
-    problems.push_back(std::string(kName) + "." + a + ", " + kName + "." + b + ": give exactly one of --" + a +
-                       " or --" + b + ", not both");
-  } else if (!v.contains(a) && !v.contains(b)) {
-    problems.push_back(std::string(kName) + "." + a + ": missing (give --" + a + " or --" + b + ")");
-  }
-}
 
 // Node gap within the nozzle, and ribs long enough that filaments which are not joined
 // stay a nozzle apart.
@@ -76,7 +64,7 @@ MissingRibParams missing_rib_params_from(const nlohmann::json& v) {
   std::vector<std::string> problems;
   if (!v.contains("nozzle")) problems.push_back("missing-rib.nozzle: missing (required, > 0 mm)");
   if (!v.contains("rib")) problems.push_back("missing-rib.rib: missing (required, > 0 mm)");
-  require_one_of(v, "height", "layers", problems);
+  require_one_of(kName, v, "height", "layers", problems);
   if (!problems.empty()) throw InputError(problems);
 
   MissingRibParams p;
@@ -88,18 +76,9 @@ MissingRibParams missing_rib_params_from(const nlohmann::json& v) {
   p.cols = v.at("cols").get<int>();
   p.node_gap_mm = v.contains("node-gap") ? v.at("node-gap").get<double>() : d;
   check_rib(v, p, problems);
-  p.layer_height_mm = v.contains("layer-height") ? v.at("layer-height").get<double>() : 0.8 * d;
-  if (p.layer_height_mm < 0.5 * d - 1e-12 || p.layer_height_mm > d + 1e-12) {
-    problems.push_back(slicer::problem(kName, "layer-height", v.at("layer-height"),
-                                       "must be in [0.5 * nozzle, 1.0 * nozzle] = [" + slicer::short_number(0.5 * d) +
-                                           ", " + slicer::short_number(d) + "]",
-                                       "mm"));
-  }
-  if (v.contains("layers")) {
-    p.layers = v.at("layers").get<int>();
-  } else {
-    p.layers = std::max(1, static_cast<int>(std::lround(v.at("height").get<double>() / p.layer_height_mm)));
-  }
+  const LayerStack stack = layer_stack_from(kName, v, d, 0.8, problems);
+  p.layer_height_mm = stack.layer_height_mm;
+  p.layers = stack.layers;
   p.speed_mm_per_min = v.at("speed").get<double>();
   if (!problems.empty()) throw InputError(problems);
   return p;

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "patterns/reentrant.h"
+#include "patterns/layer_params.h"
 #include "slicer/input_error.h"
 #include "slicer/units.h"
 
@@ -12,7 +13,7 @@ using slicer::ParamDef;
 using slicer::ParamType;
 
 const slicer::ParamTable& reentrant_table() {
-  static const slicer::ParamTable kTable = {
+  static const slicer::ParamTable kTable = with_layer_rows({
       "reentrant",
       {
           {"nozzle", ParamType::Number, "mm", "filament (nozzle) diameter d; required", 0.0, true, 10.0},
@@ -21,27 +22,14 @@ const slicer::ParamTable& reentrant_table() {
           {"angle", ParamType::Number, "deg", "re-entrant angle: inclined ribs dip this far below horizontal into the cell", 0.0, true, 90.0, true, 20.0},
           {"rows", ParamType::Integer, "", "rows of cells, even", 2.0, false, 1000.0, false, 4},
           {"cols", ParamType::Integer, "", "full cells per odd row (even rows end in half cells)", 1.0, false, 1000.0, false, 4},
-          {"height", ParamType::Number, "mm", "part height, rounded to whole layers; give --height or --layers", 0.0, true, 10000.0},
-          {"layers", ParamType::Integer, "", "number of layers; give --height or --layers", 1.0, false, 100000.0},
-          {"layer-height", ParamType::Number, "mm", "layer height h, allowed 0.5*nozzle to 1.0*nozzle", 0.0, true, 10.0, false, nullptr, "0.8 * nozzle"},
-          {"speed", ParamType::Number, "mm/min", "print speed", 0.0, true, 100000.0, false, 250.0},
           {"ligament-speed-factor", ParamType::Number, "", "speed factor on ribs", 0.0, true, 10.0, false, 1.0},
-      }};
+      }}, "0.8 * nozzle");
   return kTable;
 }
 
 namespace {
 
 const char* kName = "reentrant";
-
-void require_one_of(const nlohmann::json& v, const char* a, const char* b, std::vector<std::string>& problems) {
-  if (v.contains(a) && v.contains(b)) {
-    problems.push_back(std::string(kName) + "." + a + ", " + kName + "." + b + ": give exactly one of --" + a +
-                       " or --" + b + ", not both");
-  } else if (!v.contains(a) && !v.contains(b)) {
-    problems.push_back(std::string(kName) + "." + a + ": missing (give --" + a + " or --" + b + ")");
-  }
-}
 
 // Cell size and angle against the nozzle: a band's vertical ribs in consecutive rows stay
 // a nozzle apart (W / 2 - d >= d), and so do the two re-entrant tips of a cell (H - W tan >= d).
@@ -79,7 +67,7 @@ ReentrantParams reentrant_params_from(const nlohmann::json& v) {
   for (const char* key : {"nozzle", "cell-width", "cell-height"}) {
     if (!v.contains(key)) problems.push_back(std::string(kName) + "." + key + ": missing (required, > 0 mm)");
   }
-  require_one_of(v, "height", "layers", problems);
+  require_one_of(kName, v, "height", "layers", problems);
   if (!problems.empty()) throw InputError(problems);
 
   ReentrantParams p;
@@ -95,18 +83,9 @@ ReentrantParams reentrant_params_from(const nlohmann::json& v) {
                                        "must be even so the bands join into one strand per layer", ""));
   }
   check_cell(v, p, problems);
-  p.layer_height_mm = v.contains("layer-height") ? v.at("layer-height").get<double>() : 0.8 * d;
-  if (p.layer_height_mm < 0.5 * d - 1e-12 || p.layer_height_mm > d + 1e-12) {
-    problems.push_back(slicer::problem(kName, "layer-height", v.at("layer-height"),
-                                       "must be in [0.5 * nozzle, 1.0 * nozzle] = [" + slicer::short_number(0.5 * d) +
-                                           ", " + slicer::short_number(d) + "]",
-                                       "mm"));
-  }
-  if (v.contains("layers")) {
-    p.layers = v.at("layers").get<int>();
-  } else {
-    p.layers = std::max(1, static_cast<int>(std::lround(v.at("height").get<double>() / p.layer_height_mm)));
-  }
+  const LayerStack stack = layer_stack_from(kName, v, d, 0.8, problems);
+  p.layer_height_mm = stack.layer_height_mm;
+  p.layers = stack.layers;
   p.speed_mm_per_min = v.at("speed").get<double>();
   if (!problems.empty()) throw InputError(problems);
   return p;

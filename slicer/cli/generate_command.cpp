@@ -31,12 +31,29 @@ std::string help_for(const slicer::ParamDef& d) {
   std::string h = d.help;
   if (!d.unit.empty()) h += " [" + d.unit + "]";
   if (!d.default_value.is_null()) {
-    h += " (default " + (d.default_value.is_string() ? d.default_value.get<std::string>()
-                                                     : d.default_value.dump()) + ")";
+    const auto& v = d.default_value;
+    h += " (default " +
+         (v.is_string() ? v.get<std::string>() : v.is_number() ? slicer::short_number(v.get<double>()) : v.dump()) +
+         ")";
   } else if (!d.default_text.empty()) {
     h += " (default " + d.default_text + ")";
   }
   return h;
+}
+
+// The placeholder shown in --help: the unit for numbers, the shape for lists and sizes.
+std::string type_name_for(const slicer::ParamDef& d) {
+  switch (d.type) {
+    case slicer::ParamType::Integer: return "N";
+    case slicer::ParamType::NumberList: return "LIST";
+    case slicer::ParamType::Size2: return "WxD";
+    case slicer::ParamType::Text: return "NAME";
+    case slicer::ParamType::Number: break;
+  }
+  if (d.unit == "mm") return "MM";
+  if (d.unit == "mm/min") return "MM_PER_MIN";
+  if (d.unit == "deg") return "DEG";
+  return "X";
 }
 
 // The shared tail of `strand <generator>` and `strand job`: nothing is written unless
@@ -83,7 +100,8 @@ void add_generator_commands(CLI::App& app, Action& action) {
     auto args = std::make_shared<GenerateArgs>();
     CLI::App* sub = app.add_subcommand(spec.name, spec.summary);
     for (const auto& d : spec.table().defs) {
-      args->options[d.key] = sub->add_option("--" + d.key, args->text[d.key], help_for(d));
+      args->options[d.key] =
+          sub->add_option("--" + d.key, args->text[d.key], help_for(d))->type_name(type_name_for(d));
     }
     sub->add_option("--machine", args->machine, "machine profile name or path to a .json profile (default deltawasp-2040-clay)");
     sub->add_option("-o,--output", args->output, "G-code file to write (default " + spec.name + ".gcode)");
