@@ -18,72 +18,22 @@
 #include "slicer/input_error.h"
 #include "slicer/units.h"
 #include "tests/support/gcode_view.h"
+#include "tests/support/lattice_checks.h"
 
 namespace strand::patterns {
 namespace {
 
-struct Emitted {
-  slicer::Toolpath toolpath;
-  post::ParsedGcode parsed;
-  std::string gcode;
-};
+using Emitted = testing::EmittedPart;
 
 Emitted emit(const nlohmann::json& given) {
-  const auto values = slicer::resolve_params(reentrant_table(), given);
-  Emitted e;
-  e.toolpath = reentrant_from_values(values);
-  const auto m = machines::load_profile("deltawasp-2040-clay");
-  e.gcode = post::produce(e.toolpath, m, post::plan_options_from(e.toolpath, 0.01), "x.gcode").gcode;
-  e.parsed = post::parse_gcode(e.gcode);
-  return e;
+  return testing::emit_on_delta(reentrant_table(), &reentrant_from_values, given);
 }
 
 const nlohmann::json kSample = {{"nozzle", 0.6},  {"cell-width", 8.0}, {"cell-height", 7.0},
                                 {"angle", 20},    {"rows", 4},         {"cols", 4},
                                 {"layers", 3}};
 
-// Smallest centre-line distance between deposits of one layer that do not share an end
-// point: below the nozzle diameter, two beads that are not joined would overlap.
-double min_gap_between_unjoined(const Emitted& e, int layer) {
-  std::vector<testing::DepositSeg> segs;
-  for (const auto& s : testing::deposit_segments(e.parsed.program)) {
-    if (s.layer == layer) segs.push_back(s);
-  }
-  double gap = 1e9;
-  for (std::size_t i = 0; i < segs.size(); ++i) {
-    const slicer::Vec2 a = segs[i].a.head<2>(), b = segs[i].b.head<2>();
-    for (std::size_t j = i + 1; j < segs.size(); ++j) {
-      const slicer::Vec2 c = segs[j].a.head<2>(), d = segs[j].b.head<2>();
-      const double joined = std::min({(a - c).norm(), (a - d).norm(), (b - c).norm(), (b - d).norm()});
-      if (joined < 2e-3) continue;
-      gap = std::min({gap, slicer::point_segment_distance(a, c, d), slicer::point_segment_distance(b, c, d),
-                      slicer::point_segment_distance(c, a, b), slicer::point_segment_distance(d, a, b)});
-    }
-  }
-  return gap;
-}
-
-void expect_sound(const Emitted& e, const std::string& what) {
-  SCOPED_TRACE(what);
-  const auto c = post::find_contacts(e.parsed.program, 0.01, 1e-3);
-  EXPECT_TRUE(c.crossings.empty()) << c.crossings.size() << " crossings, first at "
-                                   << (c.crossings.empty() ? slicer::Vec2(0, 0) : c.crossings[0].at_mm).transpose();
-  const auto est = post::estimate(e.parsed.program);
-  ASSERT_EQ(est.layers.size(), e.toolpath.layers.size());
-  for (const auto& l : est.layers) EXPECT_EQ(l.strands, 1) << "layer " << l.layer;
-  slicer::Vec2 lo(1e9, 1e9), hi(-1e9, -1e9);
-  for (const auto& s : testing::deposit_segments(e.parsed.program)) {
-    if (s.layer != 0) continue;
-    for (const slicer::Vec3& q : {s.a, s.b}) lo = lo.cwiseMin(q.head<2>()), hi = hi.cwiseMax(q.head<2>());
-  }
-  const auto& fp = e.toolpath.derived.at("footprint_mm");
-  const double d = e.toolpath.parameters.at("nozzle").get<double>();
-  EXPECT_NEAR(hi.x() - lo.x() + d, fp[0].get<double>(), 0.01);
-  EXPECT_NEAR(hi.y() - lo.y() + d, fp[1].get<double>(), 0.01);
-  EXPECT_NEAR(hi.x() + lo.x(), 0.0, 0.01) << "centred";
-  EXPECT_NEAR(hi.y() + lo.y(), 0.0, 0.01) << "centred";
-  EXPECT_GE(min_gap_between_unjoined(e, 0), d - 2e-3) << "filaments that are not joined keep a nozzle apart";
-}
+void expect_sound(const Emitted& e, const std::string& what) { testing::expect_sound_lattice(e, what); }
 
 TEST(Reentrant, FiftyRandomValidHoneycombsHaveNoCrossingAndOneStrandPerLayer) {
   std::mt19937 rng(7);
