@@ -16,13 +16,6 @@ using slicer::Vec2;
 
 namespace {
 
-Vec2 unit(double rad) { return {std::cos(rad), std::sin(rad)}; }
-
-double wrap_2pi(double rad) {
-  rad = std::fmod(rad, slicer::kTwoPi);
-  return rad < 0 ? rad + slicer::kTwoPi : rad;
-}
-
 // Grip detour replacing the frame chord p0 -> p1: a solid zig-zag of lines across the
 // whole width (x_lo..x_hi along the chord), outside the chord by one pitch, entered and
 // left through two neighbouring lines at the chord's middle; when a line falls outside
@@ -168,17 +161,17 @@ FrameAttach frame_attach(const Vec2& c, const std::vector<double>& ligament_angl
   const double theta = slicer::angle_of(c, p);
   double closest = slicer::kTwoPi, tau = theta;
   for (double a : ligament_angles) {
-    const double cw = wrap_2pi(theta - a);
+    const double cw = slicer::wrap_period(theta - a, slicer::kTwoPi);
     if (cw < closest) closest = cw, tau = a;
   }
   FrameAttach f;
   if (closest >= std::acos(rings.attach_mm / (p - c).norm())) {
     f.angle_rad = theta;
-    f.pts = {c + rings.attach_mm * unit(theta)};
+    f.pts = {c + rings.attach_mm * slicer::unit_vector(theta)};
     return f;
   }
   f.angle_rad = tau - std::acos(rings.attach_mm / rings.frame_mm) / 2;
-  f.pts = {c + rings.attach_mm * unit(f.angle_rad), c + rings.frame_mm * unit(f.angle_rad)};
+  f.pts = {c + rings.attach_mm * slicer::unit_vector(f.angle_rad), c + rings.frame_mm * slicer::unit_vector(f.angle_rad)};
   return f;
 }
 

@@ -21,13 +21,6 @@ using slicer::Vec2;
 
 namespace {
 
-Vec2 unit(double rad) { return {std::cos(rad), std::sin(rad)}; }
-
-double wrap_2pi(double rad) {
-  rad = std::fmod(rad, slicer::kTwoPi);
-  return rad < 0 ? rad + slicer::kTwoPi : rad;
-}
-
 EdgePath oriented(const EdgePath& e, bool forward) {
   if (forward) return e;
   EdgePath r;
@@ -74,10 +67,10 @@ Built build_graph(const ChiralLattice& l, const NodeRings& rings, const StrandSp
 
 // Signed sweep of the visit from `in` to `out`: through the sector holding no other end.
 double visit_sweep(const std::vector<double>& angles, double in, double out) {
-  const double gap = wrap_2pi(out - in);
+  const double gap = slicer::wrap_period(out - in, slicer::kTwoPi);
   if (angles.size() == 2) return gap <= slicer::kPi ? gap : gap - slicer::kTwoPi;
   for (double a : angles) {
-    const double x = wrap_2pi(a - in);
+    const double x = slicer::wrap_period(a - in, slicer::kTwoPi);
     if (x > 1e-12 && x < gap - 1e-12) return gap - slicer::kTwoPi;
   }
   return gap;
@@ -113,7 +106,7 @@ std::vector<Visit> visits_of(const Built& b, const NodeRings& rings,
     const double back = v.sweep_rad >= 0 ? -1.0 : 1.0;
     double gap = slicer::kTwoPi, next = v.in_rad;
     for (double a : b.end_angles[static_cast<std::size_t>(v.vertex)]) {
-      const double dist = wrap_2pi(back * (a - v.in_rad));
+      const double dist = slicer::wrap_period(back * (a - v.in_rad), slicer::kTwoPi);
       if (dist > 1e-12 && dist < gap) gap = dist, next = a;
     }
     const auto& ins = entries[static_cast<std::size_t>(v.vertex)];
@@ -167,7 +160,7 @@ std::vector<Segment> node_hairpin(const Vec2& c, const NodeRings& rings, double 
   const double margin = sign * std::min(h / rho.front(), std::abs(sweep_rad) / 4);
   const double exit_rad = entry_rad + sweep_rad;
   std::vector<Segment> out;
-  out.push_back(slicer::line_to(c + rho.back() * unit(entry_rad), Feature::Node));
+  out.push_back(slicer::line_to(c + rho.back() * slicer::unit_vector(entry_rad), Feature::Node));
   for (int j = passes - 1; j >= 0; --j) {
     const int leg = passes - 1 - j;  // 0 = outermost; even legs run towards the exit
     const double back =
@@ -175,12 +168,12 @@ std::vector<Segment> node_hairpin(const Vec2& c, const NodeRings& rings, double 
     const double end = j == 0 ? exit_rad : (leg % 2 == 0 ? exit_rad - margin : entry_rad + back);
     const bool ccw = (leg % 2 == 0) == (sign > 0);
     out.push_back(
-        slicer::arc_to(c + rho[static_cast<std::size_t>(j)] * unit(end), c, ccw, Feature::Node));
+        slicer::arc_to(c + rho[static_cast<std::size_t>(j)] * slicer::unit_vector(end), c, ccw, Feature::Node));
     if (j > 0)
       out.push_back(
-          slicer::line_to(c + rho[static_cast<std::size_t>(j - 1)] * unit(end), Feature::Node));
+          slicer::line_to(c + rho[static_cast<std::size_t>(j - 1)] * slicer::unit_vector(end), Feature::Node));
   }
-  out.push_back(slicer::line_to(c + rings.attach_mm * unit(exit_rad), Feature::Node));
+  out.push_back(slicer::line_to(c + rings.attach_mm * slicer::unit_vector(exit_rad), Feature::Node));
   return out;
 }
 

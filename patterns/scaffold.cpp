@@ -55,21 +55,16 @@ Vec2 outward_normal(const Rect& r, const Vec2& p) {
   return Vec2(0, -1);
 }
 
-double wrap(double t, double period) {
-  t = std::fmod(t, period);
-  return t < 0 ? t + period : t;
-}
-
 // Corners passed when walking the boundary from `from` to `to`, then `to` itself.
 std::vector<Vec2> walk(const Rect& r, const Vec2& from, const Vec2& to, bool ccw) {
   const double per = r.perimeter();
   const double t0 = param_of(r, from);
-  const double dist = ccw ? wrap(param_of(r, to) - t0, per) : wrap(t0 - param_of(r, to), per);
+  const double dist = ccw ? slicer::wrap_period(param_of(r, to) - t0, per) : slicer::wrap_period(t0 - param_of(r, to), per);
   const auto corners = r.corners();
   const auto cp = r.corner_params();
   std::vector<std::pair<double, Vec2>> passed;
   for (int i = 0; i < 4; ++i) {
-    const double along = ccw ? wrap(cp[i] - t0, per) : wrap(t0 - cp[i], per);
+    const double along = ccw ? slicer::wrap_period(cp[i] - t0, per) : slicer::wrap_period(t0 - cp[i], per);
     if (along > 1e-9 && along < dist - 1e-9) passed.emplace_back(along, corners[i]);
   }
   std::sort(passed.begin(), passed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -81,8 +76,8 @@ std::vector<Vec2> walk(const Rect& r, const Vec2& from, const Vec2& to, bool ccw
 
 // Is `t` strictly inside the ccw (or cw) walk from t0 to t1?
 bool on_walk(double per, double t0, double t1, double t, bool ccw) {
-  const double dist = ccw ? wrap(t1 - t0, per) : wrap(t0 - t1, per);
-  const double along = ccw ? wrap(t - t0, per) : wrap(t0 - t, per);
+  const double dist = ccw ? slicer::wrap_period(t1 - t0, per) : slicer::wrap_period(t0 - t1, per);
+  const double along = ccw ? slicer::wrap_period(t - t0, per) : slicer::wrap_period(t0 - t, per);
   return along > 1e-9 && along < dist - 1e-9;
 }
 
@@ -166,7 +161,7 @@ std::vector<Segment> link(const Rect& grown, double clearance, const Vec2& from,
   const Vec2 a = from + clearance * outward_normal(grown, from);
   const Vec2 b = to + clearance * outward_normal(grown, to);
   const double per = outer.perimeter();
-  const bool ccw = wrap(param_of(outer, b) - param_of(outer, a), per) <= per / 2;
+  const bool ccw = slicer::wrap_period(param_of(outer, b) - param_of(outer, a), per) <= per / 2;
   out.push_back(slicer::line_to(a, Feature::Link));
   for (const Vec2& q : walk(outer, a, b, ccw)) out.push_back(slicer::line_to(q, Feature::Link));
   out.push_back(slicer::line_to(to, Feature::Link));

@@ -24,6 +24,13 @@ double arc_sweep(const Vec2& center, const Vec2& from, const Vec2& to, bool ccw)
   return sweep;
 }
 
+Vec2 unit_vector(double rad) { return Vec2(std::cos(rad), std::sin(rad)); }
+
+double wrap_period(double v, double period) {
+  v = std::fmod(v, period);
+  return v < 0 ? v + period : v;
+}
+
 Vec2 on_circle(const Vec2& center, double radius, double rad) {
   return center + radius * Vec2(std::cos(rad), std::sin(rad));
 }

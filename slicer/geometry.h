@@ -16,6 +16,10 @@ double angle_of(const Vec2& c, const Vec2& p);
 // Signed sweep of an arc from `from` to `to` around `center`: positive for ccw, in
 // (0, 2pi] for ccw and [-2pi, 0) for cw; a full circle when from == to.
 double arc_sweep(const Vec2& center, const Vec2& from, const Vec2& to, bool ccw);
+// Unit vector at angle `rad` from the x axis.
+Vec2 unit_vector(double rad);
+// `v` wrapped into [0, period): angles (period 2 pi) and perimeter parameters.
+double wrap_period(double v, double period);
 // Point on a circle of `radius` around `center` at angle `rad`.
 Vec2 on_circle(const Vec2& center, double radius, double rad);
 

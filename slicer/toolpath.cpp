@@ -40,9 +40,7 @@ void grow_arc(std::pair<Vec2, Vec2>& box, const Vec2& from, const Segment& s) {
   const double sweep = arc_sweep(s.center_mm, from, s.end_mm, s.ccw);
   for (int k = -4; k <= 4; ++k) {
     const double a = k * kPi / 2.0;
-    double rel = s.ccw ? a - a0 : a0 - a;
-    rel = std::fmod(rel, kTwoPi);
-    if (rel < 0) rel += kTwoPi;
+    const double rel = wrap_period(s.ccw ? a - a0 : a0 - a, kTwoPi);
     if (rel <= std::abs(sweep)) grow(box, on_circle(s.center_mm, r, a));
   }
 }

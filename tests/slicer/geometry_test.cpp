@@ -35,5 +35,12 @@ TEST(ArcSweep, SameStartAndEndIsFullCircle) {
   EXPECT_NEAR(arc_sweep({0, 0}, {1, 0}, {1, 0}, true), 2 * kPi, 1e-12);
 }
 
+TEST(WrapPeriod, MapsIntoHalfOpenRange) {
+  EXPECT_NEAR(wrap_period(-kPi / 2, 2 * kPi), 3 * kPi / 2, 1e-12);
+  EXPECT_NEAR(wrap_period(5 * kPi, 2 * kPi), kPi, 1e-12);
+  EXPECT_EQ(wrap_period(-4.0, 4.0), 0.0);
+  EXPECT_NEAR(wrap_period(7.5, 4.0), 3.5, 1e-12);
+}
+
 }  // namespace
 }  // namespace strand::slicer
