@@ -43,9 +43,8 @@ TEST(ChiralCli, BadInputExitsTwoWithOneLineAndNoFile) {
   for (const auto& c : cases) {
     const auto dir = fresh_dir("chiral-bad");
     const auto r = run_strand(c.args + " -o out.gcode --report out.json", dir);
-    EXPECT_EQ(r.exit_code, 2) << c.args << ": " << r.err;
-    EXPECT_NE(r.err.find(c.mention), std::string::npos) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    SCOPED_TRACE(c.args);
+    expect_input_error(r, c.mention);
     EXPECT_FALSE(exists(dir + "/out.gcode"));
     EXPECT_FALSE(exists(dir + "/out.json"));
   }

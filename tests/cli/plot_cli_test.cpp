@@ -220,9 +220,7 @@ TEST_P(PlotBadInput, ExitTwoOneLineNoFile) {
   const auto dir = fresh_dir("bad");
   slicer::write_file_atomic(dir + "/in.svg", GetParam().svg);
   const auto r = run_strand(std::string("plot in.svg -o out.gcode --report out.json ") + GetParam().args, dir);
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find(GetParam().must_mention), std::string::npos) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  expect_input_error(r, GetParam().must_mention);
   EXPECT_FALSE(exists(dir + "/out.gcode"));
   EXPECT_FALSE(exists(dir + "/out.json"));
 }

@@ -219,9 +219,7 @@ TEST_P(SweepBadInput, ExitTwoOneLineNoOutput) {
   const auto dir = fresh_dir("sweep-bad");
   write(dir + "/s.json", GetParam().sweep);
   const auto r = run_strand(std::string("sweep s.json -o out ") + GetParam().args, dir);
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find(GetParam().must_mention), std::string::npos) << r.err;
-  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "exactly one line: " << r.err;
+  expect_input_error(r, GetParam().must_mention);
   EXPECT_FALSE(exists(dir + "/out/manifest.json"));
 }
 

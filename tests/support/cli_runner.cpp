@@ -1,8 +1,10 @@
 // Shell-based runner for the strand binary (tests only).
 #include "tests/support/cli_runner.h"
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdlib>
 #include <filesystem>
@@ -17,6 +19,13 @@ std::string slurp(const std::string& path) {
   std::ostringstream ss;
   ss << in.rdbuf();
   return ss.str();
+}
+
+void expect_input_error(const CliResult& r, const std::string& must_mention) {
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(must_mention), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "exactly one line: " << r.err;
+  EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "the line ends the output: " << r.err;
 }
 
 bool exists(const std::string& path) { return std::filesystem::exists(path); }

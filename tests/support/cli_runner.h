@@ -16,6 +16,9 @@ CliResult run_strand(const std::string& args, const std::string& dir = ".");
 // A fresh empty directory under the system temp dir, unique per call.
 std::string fresh_dir(const std::string& tag);
 std::string slurp(const std::string& path);
+// The house rule for bad input: exit code 2 and exactly one line on stderr that contains
+// `must_mention` (the parameter and its limit). Callers check the absence of output files.
+void expect_input_error(const CliResult& r, const std::string& must_mention);
 bool exists(const std::string& path);
 
 }  // namespace strand::testing
