@@ -148,12 +148,7 @@ TEST(MissingRib, SampleJobHasNoCrossingAndOneStrandPerLayer) {
 }
 
 std::string error_of(const nlohmann::json& given) {
-  try {
-    emit(given);
-  } catch (const InputError& ex) {
-    return ex.what();
-  }
-  return "";
+  return testing::input_error_of(missing_rib_table(), &missing_rib_from_values, given);
 }
 
 TEST(MissingRibParams, RibTooShortForTheNozzleNamesTheLimit) {

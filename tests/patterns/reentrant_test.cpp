@@ -121,12 +121,7 @@ TEST(Reentrant, SampleJobHasNoCrossingAndOneStrandPerLayer) {
 }
 
 std::string error_of(const nlohmann::json& given) {
-  try {
-    emit(given);
-  } catch (const InputError& ex) {
-    return ex.what();
-  }
-  return "";
+  return testing::input_error_of(reentrant_table(), &reentrant_from_values, given);
 }
 
 TEST(ReentrantParams, OddRowsAreRejected) {

@@ -9,6 +9,7 @@
 #include "postprocess/crossings.h"
 #include "postprocess/estimate.h"
 #include "postprocess/produce.h"
+#include "slicer/input_error.h"
 #include "tests/support/gcode_view.h"
 
 namespace strand::testing {
@@ -21,6 +22,16 @@ EmittedPart emit_on_delta(const slicer::ParamTable& table,
   e.gcode = post::produce(e.toolpath, m, post::plan_options_from(e.toolpath, 0.01), "x.gcode").gcode;
   e.parsed = post::parse_gcode(e.gcode);
   return e;
+}
+
+std::string input_error_of(const slicer::ParamTable& table,
+                           slicer::Toolpath (*make)(const nlohmann::json&), const nlohmann::json& given) {
+  try {
+    emit_on_delta(table, make, given);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 std::pair<slicer::Vec2, slicer::Vec2> deposit_bounds(const slicer::MotionProgram& p, int layer) {

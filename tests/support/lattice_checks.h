@@ -23,6 +23,10 @@ struct EmittedPart {
 EmittedPart emit_on_delta(const slicer::ParamTable& table,
                           slicer::Toolpath (*make)(const nlohmann::json&), const nlohmann::json& given);
 
+// The InputError message emit_on_delta throws for `given`, or "" when it is accepted.
+std::string input_error_of(const slicer::ParamTable& table,
+                           slicer::Toolpath (*make)(const nlohmann::json&), const nlohmann::json& given);
+
 // Centre-line bounds of the deposits of one layer {min, max}.
 std::pair<slicer::Vec2, slicer::Vec2> deposit_bounds(const slicer::MotionProgram& p, int layer);
 
