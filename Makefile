@@ -6,7 +6,7 @@ DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev li
                    libcairo2-dev libtinygltf-dev chromium
 MAKEFLAGS += --no-print-directory
 BUILD_DIR := build
-STRAND := $(BUILD_DIR)/slicer/cli/strand
+STRAND := $(BUILD_DIR)/cli/strand
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release $(if $(CI),-DSTRAND_WERROR=ON,)
 
 .PHONY: all deps build run test bench clean

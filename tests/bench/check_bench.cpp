@@ -7,8 +7,8 @@
 #include <string>
 
 #include "machines/profile.h"
-#include "postprocess/check.h"
-#include "postprocess/crossings.h"
+#include "postprocess/inspect/check.h"
+#include "postprocess/inspect/crossings.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include "machines/profile.h"
 #include "patterns/hexachiral.h"
 #include "patterns/tetrachiral.h"
-#include "postprocess/produce.h"
+#include "postprocess/plan/produce.h"
 
 namespace {
 

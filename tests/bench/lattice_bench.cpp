@@ -5,7 +5,7 @@
 #include "machines/profile.h"
 #include "patterns/missing_rib.h"
 #include "patterns/reentrant.h"
-#include "postprocess/produce.h"
+#include "postprocess/plan/produce.h"
 
 namespace {
 

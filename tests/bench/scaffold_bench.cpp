@@ -4,7 +4,7 @@
 
 #include "machines/profile.h"
 #include "patterns/scaffold.h"
-#include "postprocess/produce.h"
+#include "postprocess/plan/produce.h"
 
 namespace {
 

@@ -3,7 +3,7 @@
 
 #include <random>
 
-#include "postprocess/stroke_ordering.h"
+#include "postprocess/plot/stroke_ordering.h"
 
 namespace {
 

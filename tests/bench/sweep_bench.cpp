@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "slicer/cli/sweep_runner.h"
+#include "cli/sweep_runner.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include "machines/pen_emitter.h"
 #include "machines/plotter_kinematics.h"
 #include "machines/profile.h"
-#include "postprocess/gcode_parser.h"
+#include "postprocess/inspect/gcode_parser.h"
 #include "slicer/file_io.h"
 #include "tests/support/cli_runner.h"
 

@@ -9,10 +9,10 @@
 #include <string>
 
 #include "machines/profile.h"
-#include "postprocess/crossings.h"
-#include "postprocess/estimate.h"
-#include "postprocess/gcode_parser.h"
-#include "postprocess/produce.h"
+#include "postprocess/inspect/crossings.h"
+#include "postprocess/plan/estimate.h"
+#include "postprocess/inspect/gcode_parser.h"
+#include "postprocess/plan/produce.h"
 #include "slicer/params.h"
 #include "tests/support/gcode_view.h"
 

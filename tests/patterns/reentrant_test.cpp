@@ -10,10 +10,10 @@
 #include <set>
 
 #include "machines/profile.h"
-#include "postprocess/crossings.h"
-#include "postprocess/estimate.h"
-#include "postprocess/gcode_parser.h"
-#include "postprocess/produce.h"
+#include "postprocess/inspect/crossings.h"
+#include "postprocess/plan/estimate.h"
+#include "postprocess/inspect/gcode_parser.h"
+#include "postprocess/plan/produce.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/units.h"

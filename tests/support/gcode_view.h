@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "postprocess/gcode_parser.h"
+#include "postprocess/inspect/gcode_parser.h"
 
 namespace strand::testing {
 

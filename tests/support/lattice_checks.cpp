@@ -6,9 +6,9 @@
 #include <algorithm>
 
 #include "machines/profile.h"
-#include "postprocess/crossings.h"
-#include "postprocess/estimate.h"
-#include "postprocess/produce.h"
+#include "postprocess/inspect/crossings.h"
+#include "postprocess/plan/estimate.h"
+#include "postprocess/plan/produce.h"
 #include "slicer/input_error.h"
 #include "tests/support/gcode_view.h"
 

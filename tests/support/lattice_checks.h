@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "postprocess/gcode_parser.h"
+#include "postprocess/inspect/gcode_parser.h"
 #include "slicer/params.h"
 #include "slicer/toolpath.h"
 

@@ -1,0 +1,93 @@
+// `strand check FILE.gcode [--machine NAME|FILE] [--json] [--svg-layer N OUT.svg]`: exit 0
+// when the file passes, 1 when it has problems, 2 for bad input.
+#include <iostream>
+#include <memory>
+
+#include "machines/profile.h"
+#include "postprocess/inspect/check.h"
+#include "postprocess/preview/svg_layer.h"
+#include "cli/commands.h"
+#include "slicer/file_io.h"
+#include "slicer/input_error.h"
+#include "slicer/params.h"
+#include "slicer/tolerances.h"
+
+namespace strand::cli {
+
+namespace {
+
+struct CheckArgs {
+  std::string file;
+  std::string machine;
+  bool json = false;
+  std::vector<std::string> svg_layer;  // {N, OUT.svg}
+  double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+};
+
+int parse_layer_index(const std::string& text, std::size_t layers, const std::string& file) {
+  const std::string range =
+      layers == 0 ? "none: " + file + " has no layers"
+                  : "must be in [0, " + std::to_string(layers - 1) + "] (layers of " + file + ")";
+  std::size_t used = 0;
+  int n = -1;
+  try {
+    n = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || n < 0 || static_cast<std::size_t>(n) >= layers) {
+    throw InputError("svg-layer = " + text + ": " + range);
+  }
+  return n;
+}
+
+void write_svg(const post::ParsedGcode& parsed, const post::CheckReport& report,
+               const CheckArgs& a) {
+  const int n = parse_layer_index(a.svg_layer[0], parsed.program.layers.size(), a.file);
+  post::LayerMarks marks;
+  for (const auto& l : report.layers) {
+    if (l.layer == n) marks = {l.crossings, l.touches};
+  }
+  slicer::write_file_atomic(a.svg_layer[1],
+                            post::layer_svg(parsed.program, n, marks, a.arc_tolerance_mm));
+}
+
+int run_check(const CheckArgs& a) {
+  if (!(a.arc_tolerance_mm > 0.0 && a.arc_tolerance_mm <= 1.0)) {
+    throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) +
+                     ": must be in (0, 1] (mm)");
+  }
+  const std::string text = slicer::read_file(a.file);
+  std::unique_ptr<machines::MachineProfile> machine;
+  if (!a.machine.empty())
+    machine = std::make_unique<machines::MachineProfile>(machines::load_profile(a.machine));
+  const post::ParsedGcode parsed = post::parse_gcode(text);
+  post::CheckOptions options;
+  options.arc_tolerance_mm = a.arc_tolerance_mm;
+  options.touch_mm = slicer::kGcodeResolutionMm;
+  options.machine = machine.get();
+  const post::CheckReport report = post::check_parsed(parsed, options);
+  if (!a.svg_layer.empty()) write_svg(parsed, report, a);
+  std::cout << (a.json ? post::to_json(report).dump(2) + "\n" : post::to_text(report));
+  return report.ok() ? 0 : 1;
+}
+
+}  // namespace
+
+void add_check_command(CLI::App& app, Action& action) {
+  CLI::App* sub = app.add_subcommand(
+      "check", "check any G-code: strands, self-crossings, touches, arcs, bounds per layer");
+  auto a = std::make_shared<CheckArgs>();
+  sub->add_option("file", a->file, "G-code file to check")->required();
+  sub->add_option("--machine", a->machine,
+                  "machine profile name or .json path: also check build volume and arcs");
+  sub->add_flag("--json", a->json, "print the report as JSON");
+  sub->add_option("--svg-layer", a->svg_layer, "write a top view of layer N (0-based) to OUT.svg")
+      ->expected(2)
+      ->type_name("N OUT.svg");
+  sub->add_option("--arc-tolerance", a->arc_tolerance_mm,
+                  "chord error when arcs are flattened for the search [mm] (default 0.01)");
+  sub->callback([&action, a] { action = [a] { return run_check(*a); }; });
+}
+
+}  // namespace strand::cli

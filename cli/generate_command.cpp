@@ -1,0 +1,148 @@
+// `strand <generator>`: flags from the generator's parameter table, then generate, plan,
+// emit, write atomically, report.
+#include <iostream>
+#include <map>
+#include <memory>
+
+#include "machines/profile.h"
+#include "patterns/registry.h"
+#include "cli/commands.h"
+#include "cli/job_runner.h"
+#include "slicer/file_io.h"
+#include "slicer/input_error.h"
+#include "slicer/params.h"
+#include "slicer/tolerances.h"
+
+namespace strand::cli {
+
+namespace {
+
+struct GenerateArgs {
+  std::map<std::string, std::string> text;         // flag -> raw text
+  std::map<std::string, CLI::Option*> options;
+  std::string machine = "deltawasp-2040-clay";
+  std::string output;
+  std::string report;
+  double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+  bool viewer_e = false;
+};
+
+std::string help_for(const slicer::ParamDef& d) {
+  std::string h = d.help;
+  if (!d.unit.empty()) h += " [" + d.unit + "]";
+  if (!d.default_value.is_null()) {
+    const auto& v = d.default_value;
+    h += " (default " +
+         (v.is_string() ? v.get<std::string>() : v.is_number() ? slicer::short_number(v.get<double>()) : v.dump()) +
+         ")";
+  } else if (!d.default_text.empty()) {
+    h += " (default " + d.default_text + ")";
+  }
+  return h;
+}
+
+// The placeholder shown in --help: the unit for numbers, the shape for lists and sizes.
+std::string type_name_for(const slicer::ParamDef& d) {
+  switch (d.type) {
+    case slicer::ParamType::Integer: return "N";
+    case slicer::ParamType::NumberList: return "LIST";
+    case slicer::ParamType::Size2: return "WxD";
+    case slicer::ParamType::Text: return "NAME";
+    case slicer::ParamType::Number: break;
+  }
+  if (d.unit == "mm") return "MM";
+  if (d.unit == "mm/min") return "MM_PER_MIN";
+  if (d.unit == "deg") return "DEG";
+  return "X";
+}
+
+// The shared tail of `strand <generator>` and `strand job`: nothing is written unless
+// every step succeeded.
+int run_and_print(const patterns::GeneratorSpec& spec, const nlohmann::json& given,
+                  const JobSettings& s) {
+  std::cout << run_job(spec, given, s).summary;
+  if (s.viewer_e) {
+    std::cout << "  preview copy   " << viewer_output_path(job_output_path(spec, s))
+              << " (computed E, not for printing)\n";
+  }
+  return 0;
+}
+
+int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
+  const auto& table = spec.table();
+  nlohmann::json given = nlohmann::json::object();
+  for (const auto& d : table.defs) {
+    if (a.options.at(d.key)->count() > 0) given[d.key] = slicer::parse_param_text(table, d, a.text.at(d.key));
+  }
+  return run_and_print(spec, given, {a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e});
+}
+
+// Job file: {"generator", "machine", "params": {flag: value}, "output", "report",
+// "arc-tolerance"}; relative output paths are relative to the current directory.
+nlohmann::json read_job(const std::string& path) {
+  try {
+    return nlohmann::json::parse(slicer::read_file(path));
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError("job = " + path + ": malformed JSON at byte " + std::to_string(e.byte));
+  }
+}
+
+int run_job_json(const nlohmann::json& j, const std::string& path) {
+  if (!j.is_object()) throw InputError("job = " + path + ": must be a JSON object");
+  const JobSpec job = job_spec_from_json(j, "job");
+  return run_and_print(*job.generator, job.params, job.settings);
+}
+
+}  // namespace
+
+void add_generator_commands(CLI::App& app, Action& action) {
+  for (const auto& spec : patterns::generators()) {
+    auto args = std::make_shared<GenerateArgs>();
+    CLI::App* sub = app.add_subcommand(spec.name, spec.summary);
+    for (const auto& d : spec.table().defs) {
+      args->options[d.key] =
+          sub->add_option("--" + d.key, args->text[d.key], help_for(d))->type_name(type_name_for(d));
+    }
+    sub->add_option("--machine", args->machine, "machine profile name or path to a .json profile (default deltawasp-2040-clay)");
+    sub->add_option("-o,--output", args->output, "G-code file to write (default " + spec.name + ".gcode)");
+    sub->add_option("--report", args->report, "write a JSON report here");
+    sub->add_option("--arc-tolerance", args->arc_tolerance_mm,
+                    "max chord error when arcs become G1 segments [mm] (default 0.01)");
+    sub->add_flag("--viewer-e", args->viewer_e,
+                  "also write <output>.viewer-e.gcode: computed E for viewers, not for printing");
+    const patterns::GeneratorSpec* s = &spec;
+    sub->callback([&action, s, args] { action = [s, args] { return run_generator(*s, *args); }; });
+  }
+}
+
+void add_job_command(CLI::App& app, Action& action) {
+  CLI::App* sub = app.add_subcommand("job", "run a generator from a JSON job file");
+  auto path = std::make_shared<std::string>();
+  auto output = std::make_shared<std::string>();
+  auto report = std::make_shared<std::string>();
+  sub->add_option("spec", *path, "job file (JSON)")->required();
+  sub->add_option("-o,--output", *output, "override the job's output path");
+  sub->add_option("--report", *report, "override the job's report path");
+  sub->callback([&action, path, output, report] {
+    action = [path, output, report] {
+      nlohmann::json j = read_job(*path);
+      if (j.is_object() && !output->empty()) j["output"] = *output;
+      if (j.is_object() && !report->empty()) j["report"] = *report;
+      return run_job_json(j, *path);
+    };
+  });
+}
+
+void add_machines_command(CLI::App& app, Action& action) {
+  CLI::App* sub = app.add_subcommand("machines", "list the shipped machine profiles");
+  sub->callback([&action] {
+    action = [] {
+      for (const auto& [name, description] : machines::list_profiles()) {
+        std::cout << name << "  " << description << "\n";
+      }
+      return 0;
+    };
+  });
+}
+
+}  // namespace strand::cli

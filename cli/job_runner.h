@@ -1,0 +1,50 @@
+// Running one job (generator + parameters + machine) without printing: the shared core of
+// `strand <generator>`, `strand job` and `strand sweep`.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "patterns/registry.h"
+#include "postprocess/plan/produce.h"
+#include "slicer/tolerances.h"
+
+namespace strand::cli {
+
+struct JobSettings {
+  std::string machine = "deltawasp-2040-clay";
+  std::string output;  // empty: "<generator>.gcode"
+  std::string report;  // empty: no report file
+  double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+  bool viewer_e = false;  // also write the preview-only copy with computed E
+};
+
+// A job file's content, checked: {"generator", "machine", "params", "output", "report",
+// "arc-tolerance", "description"}.
+struct JobSpec {
+  const patterns::GeneratorSpec* generator = nullptr;
+  nlohmann::json params = nlohmann::json::object();  // as given, keys = CLI long flags
+  JobSettings settings;
+  std::string description;
+};
+
+// Checks the keys and the generator name; `where` prefixes messages ("job", "sweep.job").
+// Throws InputError naming the key path.
+JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where);
+
+// Generates, plans and emits in memory; nothing is written. Throws InputError for bad
+// parameters, an unknown machine or a part that does not fit.
+post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
+                           const JobSettings& settings);
+
+// The G-code path a job writes: settings.output or "<generator>.gcode".
+std::string job_output_path(const patterns::GeneratorSpec& generator, const JobSettings& settings);
+
+// "out/x.gcode" -> "out/x.viewer-e.gcode": the preview-only copy beside the printable file.
+std::string viewer_output_path(const std::string& gcode_path);
+
+// produce_job, then writes the G-code (report, viewer copy) atomically; returns what was produced.
+post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
+                       const JobSettings& settings);
+
+}  // namespace strand::cli

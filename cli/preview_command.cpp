@@ -1,0 +1,102 @@
+// `strand preview FILE.gcode -o OUT`: any G-code, through the parser, drawn as .png, .svg,
+// .html (interactive, self-contained) or .glb (3D), chosen by OUT's extension.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "postprocess/inspect/gcode_parser.h"
+#include "postprocess/preview/preview_gltf.h"
+#include "postprocess/preview/preview_html.h"
+#include "postprocess/preview/preview_image.h"
+#include "cli/commands.h"
+#include "slicer/file_io.h"
+#include "slicer/input_error.h"
+#include "slicer/tolerances.h"
+
+namespace strand::cli {
+
+namespace {
+
+struct PreviewArgs {
+  std::string input;
+  std::string output;
+  int layer = -1;
+  std::string colour = "feature";
+  std::string view = "both";
+  bool travel = false;
+  bool lines = false;
+  std::string size = "1200x700";
+  double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+};
+
+post::ImageOptions image_options(const PreviewArgs& a) {
+  post::ImageOptions o;
+  if (a.colour != "feature" && a.colour != "layer") throw InputError("--colour = " + a.colour + ": must be feature or layer");
+  o.colouring = a.colour == "layer" ? post::PreviewColouring::Layer : post::PreviewColouring::Feature;
+  if (a.view == "top") {
+    o.view = post::PreviewView::Top;
+  } else if (a.view == "iso") {
+    o.view = post::PreviewView::Iso;
+  } else if (a.view == "both") {
+    o.view = post::PreviewView::Both;
+  } else {
+    throw InputError("--view = " + a.view + ": must be top, iso or both");
+  }
+  const auto x = a.size.find('x');
+  try {
+    std::size_t used = 0;
+    o.width_px = std::stoi(a.size.substr(0, x), &used);
+    o.height_px = x == std::string::npos ? 0 : std::stoi(a.size.substr(x + 1));
+  } catch (const std::exception&) {
+    o.width_px = 0;
+  }
+  if (x == std::string::npos || o.width_px <= 0 || o.height_px <= 0) {
+    throw InputError("--size = " + a.size + ": must be WxH in pixels, e.g. 1200x700");
+  }
+  o.layer = a.layer;
+  o.travel = a.travel;
+  return o;
+}
+
+int run(const PreviewArgs& a) {
+  const std::string ext = std::filesystem::path(a.output).extension().string();
+  if (ext != ".png" && ext != ".svg" && ext != ".html" && ext != ".glb") {
+    throw InputError("--output = " + a.output + ": extension must be .png, .svg, .html or .glb");
+  }
+  if (!(a.arc_tolerance_mm > 0.0 && a.arc_tolerance_mm <= 1.0)) {
+    throw InputError("--arc-tolerance: must be in (0, 1] (mm)");
+  }
+  const post::ImageOptions o = image_options(a);
+  const std::string gcode = slicer::read_file(a.input);
+  const post::ParsedGcode parsed = post::parse_gcode(gcode);
+  const post::PreviewScene scene = post::preview_scene(parsed.program, a.arc_tolerance_mm);
+  if (scene.paths.empty()) throw InputError("input = " + a.input + ": no moves to draw (is it G-code?)");
+  std::string bytes;
+  if (ext == ".png") bytes = post::render_png(scene, o);
+  if (ext == ".svg") bytes = post::render_svg(scene, o);
+  if (ext == ".html") bytes = post::render_html(scene, std::filesystem::path(a.input).filename().string());
+  if (ext == ".glb") bytes = post::render_glb(scene, {.tubes = !a.lines});
+  slicer::write_file_atomic(a.output, bytes);
+  std::cout << "preview " << a.input << " -> " << a.output << " (" << scene.layer_z_mm.size() << " layers, "
+            << scene.paths.size() << " paths)\n";
+  return 0;
+}
+
+}  // namespace
+
+void add_preview_command(CLI::App& app, Action& action) {
+  auto a = std::make_shared<PreviewArgs>();
+  CLI::App* sub = app.add_subcommand("preview", "draw any G-code file as .png, .svg, .html or .glb (by -o's extension)");
+  sub->add_option("gcode", a->input, "G-code file")->required();
+  sub->add_option("-o,--output", a->output, "preview file: .png, .svg, .html or .glb")->required();
+  sub->add_option("--layer", a->layer, "only this layer (0-based, as ;LAYER:n; png/svg; default all)");
+  sub->add_option("--colour", a->colour, "colour by feature or layer (png/svg; default feature)");
+  sub->add_option("--view", a->view, "top, iso or both side by side (png/svg; default both)");
+  sub->add_flag("--travel", a->travel, "also draw travel moves (png/svg)");
+  sub->add_flag("--lines", a->lines, "glb: strands as lines instead of tubes");
+  sub->add_option("--size", a->size, "image size WxH in pixels (png/svg; default 1200x700)");
+  sub->add_option("--arc-tolerance", a->arc_tolerance_mm, "chord error when drawing G2/G3 arcs [mm] (default 0.01)");
+  sub->callback([&action, a] { action = [a] { return run(*a); }; });
+}
+
+}  // namespace strand::cli

@@ -1,0 +1,168 @@
+// Planner: placement, travels, arc handling, speeds and volumes.
+#include "postprocess/plan/planner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "postprocess/plan/arc_segmentation.h"
+#include "postprocess/plan/placement.h"
+#include "postprocess/plan/valve_lag.h"
+#include "slicer/units.h"
+#include "slicer/tolerances.h"
+
+namespace strand::post {
+
+using slicer::Feature;
+using slicer::Move;
+using slicer::MoveKind;
+using slicer::Vec2;
+using slicer::Vec3;
+
+namespace {
+
+class Planner {
+ public:
+  Planner(const machines::MachineProfile& m, const PlanOptions& o) : m_(m), o_(o) {}
+
+  slicer::MotionProgram run(const slicer::Toolpath& t) {
+    offset_ = m_.volume.part_center_mm;
+    for (std::size_t li = 0; li < t.layers.size(); ++li) {
+      const auto& layer = t.layers[li];
+      p_.layers.push_back({layer.z_mm, layer.height_mm});
+      layer_ = static_cast<int>(li);
+      for (const auto& stroke : layer.strokes) add_stroke(stroke, layer.z_mm);
+    }
+    return std::move(p_);
+  }
+
+ private:
+  void add_stroke(const slicer::Stroke& s, double z) {
+    const Vec3 start(s.start_mm.x() + offset_.x(), s.start_mm.y() + offset_.y(), z);
+    travel_to(start);
+    const double area = slicer::bead_area_mm2(s.width_mm, s.height_mm);
+    Vec2 at = s.start_mm + offset_;
+    for (const auto& seg : s.segments) {
+      const Vec2 end = seg.end_mm + offset_;
+      const double feed = feed_for(seg.feature, area);
+      if (seg.kind == slicer::SegmentKind::Line) {
+        deposit(at, end, z, feed, area, s.width_mm, seg.feature);
+      } else if (m_.arcs) {
+        Move mv = deposit_move(end, z, feed, s.width_mm, seg.feature);
+        mv.is_arc = true;
+        mv.center_mm = seg.center_mm + offset_;
+        mv.ccw = seg.ccw;
+        mv.volume_mm3 = area * slicer::segment_length(at, slicer::arc_to(end, mv.center_mm, seg.ccw, seg.feature));
+        p_.moves.push_back(mv);
+      } else {
+        Vec2 from = at;
+        for (const Vec2& q : segment_arc(at, seg.center_mm + offset_, end, seg.ccw, o_.arc_tolerance_mm)) {
+          deposit(from, q, z, feed, area, s.width_mm, seg.feature);
+          from = q;
+        }
+      }
+      at = end;
+    }
+    pos_ = Vec3(at.x(), at.y(), z);
+  }
+
+  void deposit(const Vec2& from, const Vec2& to, double z, double feed, double area, double width,
+               Feature f) {
+    if ((to - from).norm() < slicer::kSamePointMm) return;
+    Move mv = deposit_move(to, z, feed, width, f);
+    mv.volume_mm3 = area * (to - from).norm();
+    p_.moves.push_back(mv);
+  }
+
+  Move deposit_move(const Vec2& end, double z, double feed, double width, Feature f) const {
+    Move mv;
+    mv.kind = MoveKind::Deposit;
+    mv.end_mm = Vec3(end.x(), end.y(), z);
+    mv.feed_mm_per_min = feed;
+    mv.width_mm = width;
+    mv.feature = f;
+    mv.layer = layer_;
+    return mv;
+  }
+
+  // Base speed x feature factor (job first, then profile), capped by the machine's feed
+  // and, on E-driven machines, by its volumetric flow over the bead section.
+  double feed_for(Feature f, double area_mm2) const {
+    double factor = 1.0;
+    if (auto it = o_.speed_factors.find(f); it != o_.speed_factors.end()) {
+      factor = it->second;
+    } else if (auto pt = m_.speed_factors.find(f); pt != m_.speed_factors.end()) {
+      factor = pt->second;
+    }
+    double feed = std::min(o_.speed_mm_per_min * factor, m_.limits.max_feed_mm_per_min);
+    const double q_max = m_.limits.max_volumetric_flow_mm3_per_s;
+    if (m_.deposition.model == machines::DepositionModel::EVolumetric && q_max > 0 && area_mm2 > 0) {
+      feed = std::min(feed, slicer::mm_per_s_to_mm_per_min(q_max / area_mm2));
+    }
+    return feed;
+  }
+
+  // Travels to `target`: straight down or up when only z changes, else lift, cross, lower.
+  void travel_to(const Vec3& target) {
+    if (!started_) {
+      started_ = true;
+      // Arrive above the first point, then go straight down: never swoop in from home.
+      const Vec3 above(target.x(), target.y(), target.z() + std::max(m_.travel_lift_mm, 1.0));
+      p_.start_mm = above;
+      push_travel(above, m_.limits.travel_feed_mm_per_min);
+    }
+    if ((target - pos_).norm() < slicer::kSamePointMm) return;
+    const bool same_xy = (target.head<2>() - pos_.head<2>()).norm() < slicer::kSamePointMm;
+    if (same_xy) {
+      push_travel(target, m_.limits.z_feed_mm_per_min);
+      return;
+    }
+    const double safe_z = std::max(pos_.z(), target.z()) + m_.travel_lift_mm;
+    if (m_.travel_lift_mm > 0 && pos_.z() < safe_z) push_travel(Vec3(pos_.x(), pos_.y(), safe_z), m_.limits.z_feed_mm_per_min);
+    push_travel(Vec3(target.x(), target.y(), m_.travel_lift_mm > 0 ? safe_z : target.z()), m_.limits.travel_feed_mm_per_min);
+    if (m_.travel_lift_mm > 0) push_travel(target, m_.limits.z_feed_mm_per_min);
+  }
+
+  void push_travel(const Vec3& to, double feed) {
+    Move mv;
+    mv.kind = MoveKind::Travel;
+    mv.end_mm = to;
+    mv.feed_mm_per_min = feed;
+    mv.layer = layer_;
+    p_.moves.push_back(mv);
+    pos_ = to;
+  }
+
+  const machines::MachineProfile& m_;
+  const PlanOptions& o_;
+  slicer::MotionProgram p_;
+  Vec2 offset_ = Vec2::Zero();
+  Vec3 pos_ = Vec3::Zero();
+  bool started_ = false;
+  int layer_ = -1;
+};
+
+}  // namespace
+
+PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm) {
+  PlanOptions o;
+  o.arc_tolerance_mm = arc_tolerance_mm;
+  o.speed_mm_per_min = t.parameters.value("speed", o.speed_mm_per_min);
+  for (Feature f : {Feature::Infill, Feature::Wall, Feature::Ligament, Feature::Node,
+                    Feature::Grip, Feature::Frame, Feature::Link, Feature::Pen}) {
+    const std::string key = slicer::to_string(f) + "-speed-factor";
+    if (t.parameters.contains(key)) o.speed_factors[f] = t.parameters.at(key).get<double>();
+  }
+  return o;
+}
+
+slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachineProfile& machine,
+                           const PlanOptions& options) {
+  slicer::MotionProgram p = Planner(machine, options).run(t);
+  if (machine.deposition.model == machines::DepositionModel::Valve && machine.deposition.lag_s > 0) {
+    apply_valve_lag(p, machine.deposition.lag_s);
+  }
+  check_fits(p, machine);
+  return p;
+}
+
+}  // namespace strand::post

@@ -1,0 +1,78 @@
+// Planning, estimating, header writing and emission for one toolpath.
+#include "postprocess/plan/produce.h"
+
+#include "machines/gcode_emitter.h"
+#include "machines/gcode_format.h"
+#include "postprocess/plan/estimate.h"
+#include "postprocess/plan/report.h"
+#include "slicer/params.h"
+
+namespace strand::post {
+
+namespace {
+
+std::string value_text(const nlohmann::json& v) {
+  if (v.is_number()) return slicer::short_number(v.get<double>());
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_array()) {
+    std::string s;
+    for (const auto& e : v) s += (s.empty() ? "" : ",") + value_text(e);
+    return s;
+  }
+  return v.dump();
+}
+
+std::vector<std::string> header(const slicer::Toolpath& t, const machines::MachineProfile& m,
+                                const PlanOptions& o, const nlohmann::json& report) {
+  std::vector<std::string> h;
+  h.push_back("Strand " + t.generator + " (toolpaths for Direct Ink Writing)");
+  h.push_back("machine: " + m.name + ", firmware " + machines::to_string(m.firmware) +
+              ", deposition " + machines::to_string(m.deposition.model) +
+              (m.arcs ? ", arcs as G2/G3" : ", arcs as G1 chords within " +
+                                                slicer::short_number(o.arc_tolerance_mm) + " mm"));
+  h.push_back("units: mm, mm/min");
+  for (const auto& [k, v] : t.parameters.items()) h.push_back("param " + k + " = " + value_text(v));
+  h.push_back("param arc-tolerance = " + slicer::short_number(o.arc_tolerance_mm));
+  for (const auto& [k, v] : t.derived.items()) {
+    if (v.is_number_float()) {
+      h.push_back("derived " + k + " = " + machines::fmt_fixed(v.get<double>(), 4));
+    } else {
+      h.push_back("derived " + k + " = " + value_text(v));
+    }
+  }
+  const auto& tot = report.at("totals");
+  for (const char* k : {"layers", "deposit_length_mm", "travel_length_mm", "ink_volume_ml",
+                        "reservoir_ml", "syringe_fills", "syringe_loads", "time_naive_s",
+                        "time_trapezoid_s"}) {
+    h.push_back("estimate " + std::string(k) + " = " + value_text(tot.at(k)));
+  }
+  for (const auto& l : report.at("layers")) {
+    h.push_back("layer " + value_text(l.at("layer")) + ": length " + value_text(l.at("deposit_length_mm")) +
+                " mm, ink " + value_text(l.at("volume_ml")) + " mL, time " + value_text(l.at("time_trapezoid_s")) +
+                " s (naive " + value_text(l.at("time_naive_s")) + " s)");
+  }
+  h.push_back("");
+  return h;
+}
+
+}  // namespace
+
+Produced produce(const slicer::Toolpath& t, const machines::MachineProfile& m,
+                 const PlanOptions& options, const std::string& gcode_path, bool viewer_e) {
+  Produced out;
+  out.program = plan(t, m, options);
+  const Estimate e = estimate(out.program, m);
+  out.report = make_report(t, m, e, gcode_path);
+  out.report["parameters"]["arc-tolerance"] = options.arc_tolerance_mm;
+  out.summary = summary_text(out.report);
+  machines::EmitOptions eo;
+  eo.header = header(t, m, options, out.report);
+  out.gcode = machines::emit_gcode(out.program, m, eo);
+  if (viewer_e) {
+    eo.viewer_e = true;
+    out.viewer_gcode = machines::emit_gcode(out.program, m, eo);
+  }
+  return out;
+}
+
+}  // namespace strand::post

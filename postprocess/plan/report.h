@@ -1,0 +1,18 @@
+// The job report (JSON for --report) and the short summary printed on stdout.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "machines/profile.h"
+#include "postprocess/plan/estimate.h"
+#include "slicer/toolpath.h"
+
+namespace strand::post {
+
+nlohmann::json make_report(const slicer::Toolpath& t, const machines::MachineProfile& m,
+                           const Estimate& e, const std::string& gcode_path);
+// A few lines for a terminal: size, layers, strands, length, ink, time.
+std::string summary_text(const nlohmann::json& report);
+
+}  // namespace strand::post

@@ -1,0 +1,196 @@
+// Pen assignment, placement, flattening, fills and reachability for `strand plot`.
+#include "postprocess/plot/plot_layout.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "machines/plotter_kinematics.h"
+#include "postprocess/plot/fill.h"
+#include "slicer/input_error.h"
+#include "slicer/params.h"
+
+namespace strand::post {
+
+namespace {
+
+using slicer::Affine;
+using slicer::Vec2;
+
+// Bounds of the drawing are taken from a flattening this fine (true size), mm.
+constexpr double kBoundsToleranceMm = 1e-3;
+
+struct Rule {
+  std::string key;
+  int pen = 1;
+};
+
+std::vector<Rule> parse_rules(const std::string& text) {
+  std::vector<Rule> rules;
+  std::size_t at = 0;
+  while (at < text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, comma - at);
+    const auto eq = item.rfind('=');
+    int pen = 0;
+    if (eq != std::string::npos) {
+      try {
+        pen = std::stoi(item.substr(eq + 1));
+      } catch (const std::exception&) {
+        pen = 0;
+      }
+    }
+    if (eq == std::string::npos || eq == 0 || pen < 1) {
+      throw InputError("plot.pens = \"" + text + "\": each rule must be KEY=PEN with PEN >= 1 (KEY a group id, layer label or colour)");
+    }
+    rules.push_back({item.substr(0, eq), pen});
+    at = comma + 1;
+  }
+  return rules;
+}
+
+int default_pen(const slicer::SvgShape& s) {
+  for (const auto& id : s.group_ids) {
+    if (id.size() == 2 && id[0] == 'm' && id[1] >= '1' && id[1] <= '9') return id[1] - '0';
+  }
+  return 1;
+}
+
+int rule_pen(const slicer::SvgShape& s, const std::vector<Rule>& rules) {
+  const auto match = [&](const std::string& key) {
+    for (const auto& r : rules) {
+      if (r.key == key) return r.pen;
+    }
+    return 0;
+  };
+  for (const auto& id : s.group_ids) {
+    if (int p = match(id)) return p;
+  }
+  for (const auto& l : s.layer_labels) {
+    if (int p = match(l)) return p;
+  }
+  for (const auto& c : {s.stroke_color, s.fill_color}) {
+    if (c.empty()) continue;
+    for (const auto& r : rules) {
+      if (slicer::normalise_color(r.key) == c) return r.pen;
+    }
+  }
+  return 0;
+}
+
+std::pair<Vec2, Vec2> bounds_of(const slicer::SvgDrawing& d, const Affine& m) {
+  Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+  for (const auto& s : d.shapes) {
+    for (const auto& p : s.paths) {
+      for (const auto& q : slicer::flatten(slicer::transformed(p, m), kBoundsToleranceMm)) {
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+      }
+    }
+  }
+  return {lo, hi};
+}
+
+// SVG (mm, y down) -> paper frame of the machine, centred in its drawable area.
+Affine placement(const slicer::SvgDrawing& d, const machines::MachineProfile& m, const PlotOptions& o) {
+  Affine base;
+  base.linear << (o.mirror ? -1.0 : 1.0), 0, 0, (machines::paper_y_down(m.plotter.setup.kind) ? 1.0 : -1.0);
+  const auto [lo, hi] = bounds_of(d, base);
+  const Vec2 size = hi - lo;
+  double s = o.scale;
+  if (o.fit_mm) {
+    s = INFINITY;
+    if (size.x() > 0) s = std::min(s, o.fit_mm->x() / size.x());
+    if (size.y() > 0) s = std::min(s, o.fit_mm->y() / size.y());
+    if (!std::isfinite(s)) s = 1.0;
+  }
+  const auto [alo, ahi] = machines::drawable_area(m.plotter);
+  const Vec2 centre = (alo + ahi) / 2 + o.offset_mm;
+  Affine place;
+  place.linear = s * Eigen::Matrix2d::Identity();
+  place.offset = centre - s * (lo + hi) / 2;
+  return slicer::compose(place, base);
+}
+
+slicer::Stroke stroke_of(const slicer::Polyline& pl, int tool, double width_mm) {
+  slicer::Stroke s;
+  s.start_mm = pl.front();
+  for (std::size_t i = 1; i < pl.size(); ++i) {
+    if ((pl[i] - pl[i - 1]).norm() > 0.0) s.segments.push_back(slicer::line_to(pl[i], slicer::Feature::Pen));
+  }
+  s.width_mm = width_mm;
+  s.tool = tool;
+  s.reversible = true;
+  return s;
+}
+
+void check_reachable(const slicer::Toolpath& t, const machines::MachineProfile& m) {
+  const auto pt = [](const Vec2& p) {
+    return "(" + slicer::short_number(std::round(p.x() * 1000) / 1000) + ", " +
+           slicer::short_number(std::round(p.y() * 1000) / 1000) + ") mm";
+  };
+  for (const auto& s : t.layers[0].strokes) {
+    std::vector<Vec2> pts{s.start_mm};
+    for (const auto& seg : s.segments) pts.push_back(seg.end_mm);
+    for (const auto& p : pts) {
+      if (const auto why = machines::unreachable_reason(m.plotter, p)) {
+        throw InputError("plot: the drawing does not fit " + m.name + ": point " + pt(p) + ": " + *why +
+                         " (use --fit, --scale or --offset)");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<int> assign_pens(const slicer::SvgDrawing& d, const std::string& rules_text, int machine_pens) {
+  const auto rules = parse_rules(rules_text);
+  std::vector<int> pens;
+  for (const auto& s : d.shapes) {
+    int pen = rule_pen(s, rules);
+    if (pen == 0) pen = default_pen(s);
+    if (pen > machine_pens) {
+      throw InputError("plot.pens: a shape maps to pen " + std::to_string(pen) + " but the machine has " +
+                       std::to_string(machine_pens) + " pen(s)");
+    }
+    pens.push_back(pen);
+  }
+  return pens;
+}
+
+slicer::Toolpath layout_plot(const slicer::SvgDrawing& d, const machines::MachineProfile& m,
+                             const PlotOptions& o) {
+  if (!m.plotter.enabled) throw InputError("machine = " + m.name + ": not a plotter (no \"plotter\" block in its profile)");
+  if (d.shapes.empty()) throw InputError("plot: the SVG has nothing drawable (no visible stroked or filled shapes)");
+  const std::vector<int> pens = assign_pens(d, o.pens, m.plotter.pen.count);
+  const Affine to_paper = placement(d, m, o);
+  const double tol = o.tolerance_mm * kFlattenShare;
+  const double width = m.plotter.pen.width_mm;
+  slicer::Toolpath t;
+  t.generator = "plot";
+  t.layers.push_back({0.0, 0.0, {}});
+  auto& strokes = t.layers[0].strokes;
+  for (std::size_t i = 0; i < d.shapes.size(); ++i) {
+    const auto& shape = d.shapes[i];
+    std::vector<slicer::Polyline> outlines;
+    for (const auto& p : shape.paths) outlines.push_back(slicer::flatten(slicer::transformed(p, to_paper), tol));
+    const int tool = pens[i] - 1;
+    if (shape.filled) {
+      for (const auto& h : hatch_fill(outlines, shape.evenodd, width, o.hatch_angle_deg)) {
+        strokes.push_back(stroke_of(h, tool, width));
+      }
+    }
+    if (shape.stroked) {
+      for (const auto& pl : outlines) strokes.push_back(stroke_of(pl, tool, width));
+    }
+  }
+  std::erase_if(strokes, [](const slicer::Stroke& s) { return s.segments.empty(); });
+  if (strokes.empty()) throw InputError("plot: the SVG has nothing drawable (every shape is empty after placement)");
+  check_reachable(t, m);
+  const auto [lo, hi] = slicer::bounds(t);
+  t.derived["drawing_width_mm"] = hi.x() - lo.x();
+  t.derived["drawing_height_mm"] = hi.y() - lo.y();
+  t.derived["scale"] = to_paper.linear.cwiseAbs().maxCoeff();  // times true size
+  return t;
+}
+
+}  // namespace strand::post

@@ -1,0 +1,57 @@
+// Uniform grid construction for point queries.
+#include "postprocess/plot/point_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace strand::post {
+
+namespace {
+
+std::vector<int> all_ids(std::size_t n) {
+  std::vector<int> ids(n);
+  for (std::size_t i = 0; i < n; ++i) ids[i] = static_cast<int>(i);
+  return ids;
+}
+
+}  // namespace
+
+PointGrid::PointGrid(const std::vector<slicer::Vec2>& points)
+    : PointGrid(points, all_ids(points.size())) {}
+
+PointGrid::PointGrid(const std::vector<slicer::Vec2>& points, const std::vector<int>& ids)
+    : points_(points) {
+  if (ids.empty()) {
+    cells_.resize(1);
+    return;
+  }
+  slicer::Vec2 hi = points[ids[0]];
+  lo_ = hi;
+  for (int id : ids) {
+    lo_ = lo_.cwiseMin(points[id]);
+    hi = hi.cwiseMax(points[id]);
+  }
+  const slicer::Vec2 size = (hi - lo_).cwiseMax(slicer::Vec2(1e-9, 1e-9));
+  cell_ = std::max(std::sqrt(size.x() * size.y() * 2.0 / static_cast<double>(ids.size())),
+                   std::max(size.x(), size.y()) / 4096.0);
+  nx_ = std::max(1, static_cast<int>(size.x() / cell_) + 1);
+  ny_ = std::max(1, static_cast<int>(size.y() / cell_) + 1);
+  cells_.resize(static_cast<std::size_t>(nx_) * ny_);
+  for (int id : ids) {
+    cells_[static_cast<std::size_t>(cell_y(points[id].y())) * nx_ + cell_x(points[id].x())].push_back(id);
+  }
+}
+
+int PointGrid::cell_x(double x) const {
+  return std::clamp(static_cast<int>(std::floor((x - lo_.x()) / cell_)), 0, nx_ - 1);
+}
+int PointGrid::cell_y(double y) const {
+  return std::clamp(static_cast<int>(std::floor((y - lo_.y()) / cell_)), 0, ny_ - 1);
+}
+
+void PointGrid::forget(int id) {
+  auto& c = cells_[static_cast<std::size_t>(cell_y(points_[id].y())) * nx_ + cell_x(points_[id].x())];
+  c.erase(std::remove(c.begin(), c.end(), id), c.end());
+}
+
+}  // namespace strand::post

@@ -1,0 +1,315 @@
+// Stroke merging, nearest-neighbour tours and 2-opt / Or-opt improvement.
+#include "postprocess/plot/stroke_ordering.h"
+
+#include <algorithm>
+#include <map>
+#include <memory>
+
+#include "postprocess/plot/point_grid.h"
+
+namespace strand::post {
+
+namespace {
+
+using slicer::Stroke;
+using slicer::Vec2;
+
+// a then b; a gap (at most the join distance) is bridged by a line so no geometry moves.
+Stroke joined(Stroke a, const Stroke& b) {
+  if ((b.start_mm - a.end_mm()).norm() > 0.0) {
+    a.segments.push_back(slicer::line_to(b.start_mm, slicer::Feature::Pen));
+  }
+  for (const auto& s : b.segments) a.segments.push_back(s);
+  return a;
+}
+
+// Open path over strokes with a fixed start point; every stroke is costed as reversible and
+// non-reversible ones are simply not flipped in the result (plotting strokes all reverse).
+// Open path over reversible strokes with a fixed start point. Endpoint 2s is the start of
+// stroke s, 2s + 1 its end.
+class Tour {
+ public:
+  Tour(std::vector<Vec2> ends, const Vec2& start, std::vector<int> order)
+      : ends_(std::move(ends)), start_(start), order_(std::move(order)),
+        rev_(ends_.size() / 2, 0), pos_(ends_.size() / 2, 0) {
+    for (int p = 0; p < size(); ++p) pos_[order_[p]] = p;
+  }
+  int size() const { return static_cast<int>(order_.size()); }
+  int in(int p) const { return 2 * order_[p] + (rev_[order_[p]] ? 1 : 0); }
+  int out(int p) const { return 2 * order_[p] + (rev_[order_[p]] ? 0 : 1); }
+  Vec2 out_point(int p) const { return p < 0 ? start_ : ends_[out(p)]; }
+  Vec2 in_point(int p) const { return ends_[in(p)]; }
+  // Cost of the edge from position p to p + 1 (p = -1: from the start; p + 1 = size: none).
+  double edge(int p) const {
+    if (p + 1 >= size()) return 0.0;
+    return (out_point(p) - in_point(p + 1)).norm();
+  }
+  double d(const Vec2& a, const Vec2& b) const { return (a - b).norm(); }
+  Vec2 ends_point(int e) const { return ends_[e]; }
+  void reverse_block(int i, int j) {
+    for (int k = i; k <= j; ++k) rev_[order_[k]] ^= 1;
+    for (int a = i, b = j; a < b; ++a, --b) std::swap(order_[a], order_[b]);
+    for (int k = i; k <= j; ++k) pos_[order_[k]] = k;
+  }
+  int pos_of(int stroke) const { return pos_[stroke]; }
+  const std::vector<int>& order() const { return order_; }
+  bool reversed(int stroke) const { return rev_[stroke] != 0; }
+  double length() const {
+    double total = 0.0;
+    for (int p = -1; p + 1 < size(); ++p) total += edge(p);
+    return total;
+  }
+
+ private:
+  std::vector<Vec2> ends_;
+  Vec2 start_;
+  std::vector<int> order_;
+  std::vector<char> rev_;
+  std::vector<int> pos_;
+};
+
+std::vector<int> nearest_neighbour_order(const std::vector<Vec2>& ends, const Vec2& start,
+                                         std::vector<char>& reversed) {
+  const int n = static_cast<int>(ends.size() / 2);
+  auto grid = std::make_unique<PointGrid>(ends);
+  int grid_size = n;  // strokes alive when the grid was built
+  std::vector<char> used(n, 0);
+  std::vector<int> order;
+  order.reserve(n);
+  Vec2 at = start;
+  for (int k = 0; k < n; ++k) {
+    // Rebuild over the remaining ends when three quarters are gone: keeps each search local
+    // and the total rebuild cost linear (n + n/4 + n/16 + ...).
+    if (n - k < grid_size / 4 && n - k > 64) {
+      std::vector<int> alive;
+      for (int s = 0; s < n; ++s) {
+        if (!used[s]) alive.insert(alive.end(), {2 * s, 2 * s + 1});
+      }
+      grid = std::make_unique<PointGrid>(ends, alive);
+      grid_size = n - k;
+    }
+    const int e = grid->nearest(at, [&](int id) { return !used[id / 2]; });
+    const int s = e / 2;
+    used[s] = 1;
+    grid->forget(2 * s);
+    grid->forget(2 * s + 1);
+    reversed[s] = (e % 2 == 1);
+    order.push_back(s);
+    at = ends[reversed[s] ? 2 * s : 2 * s + 1];
+  }
+  return order;
+}
+
+// 2-opt and Or-opt driven by candidate lists: for the edge a -> b leaving position p, try
+// joining a to one of its near endpoints c instead.
+class Improver {
+ public:
+  Improver(Tour& t, const std::vector<std::vector<int>>& near, const OrderOptions& o)
+      : t_(t), near_(near), o_(o) {}
+
+  void run(long budget) {
+    std::vector<int> queue(t_.order().rbegin(), t_.order().rend());
+    std::vector<char> queued(t_.size(), 1);
+    while (!queue.empty() && budget > 0) {
+      const int s = queue.back();
+      queue.pop_back();
+      queued[s] = 0;
+      const int p = t_.pos_of(s);
+      bool improved = false;
+      for (int edge_at : {p - 1, p}) {
+        if (edge_at < -1 || edge_at + 1 >= t_.size()) continue;
+        if (try_two_opt(edge_at, budget) || try_or_opt(edge_at, budget)) {
+          improved = true;
+          break;
+        }
+      }
+      if (improved) {
+        for (int q = std::max(0, p - 2); q < std::min(t_.size(), p + 3); ++q) {
+          push(t_.order()[q], queue, queued);
+        }
+        for (int s2 : touched_) push(s2, queue, queued);
+      }
+    }
+  }
+
+ private:
+  static void push(int s, std::vector<int>& queue, std::vector<char>& queued) {
+    if (!queued[s]) {
+      queued[s] = 1;
+      queue.push_back(s);
+    }
+  }
+
+  bool try_two_opt(int p, long& budget) {
+    if (p < 0) return false;
+    const Vec2 a = t_.out_point(p), b = t_.in_point(p + 1);
+    const double ab = t_.d(a, b);
+    for (int c : near_[t_.out(p)]) {
+      --budget;
+      const Vec2 cp = t_.ends_point(c);
+      const double ac = t_.d(a, cp);
+      if (ac >= ab) break;
+      const int q = t_.pos_of(c / 2);
+      if (q > p && c == t_.out(q) && q - p <= o_.max_move_span) {
+        // reverse [p+1 .. q]: a -> out(q), in(p+1) -> in(q+1)
+        const double next = q + 1 < t_.size() ? t_.d(b, t_.in_point(q + 1)) - t_.edge(q) : -t_.edge(q);
+        if (ac + next - ab < -1e-9) {
+          apply_reverse(p + 1, q);
+          return true;
+        }
+      } else if (q <= p && c == t_.in(q) && p - q <= o_.max_move_span) {
+        // reverse [q .. p]: out(q-1) -> out(p) = a, in(q) = c -> b
+        const Vec2 prev = t_.out_point(q - 1);
+        const double delta = t_.d(prev, a) + t_.d(cp, b) - t_.d(prev, cp) - ab;
+        if (delta < -1e-9) {
+          apply_reverse(q, p);
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  // Moves the single stroke at p + 1 (either way round) next to a near endpoint of a.
+  bool try_or_opt(int p, long& budget) {
+    if (p + 1 >= t_.size()) return false;
+    const int m = p + 1;
+    const Vec2 prev = t_.out_point(m - 1), in_m = t_.in_point(m), out_m = t_.out_point(m);
+    const bool last = m + 1 >= t_.size();
+    const double removed = t_.d(prev, in_m) + (last ? 0.0 : t_.d(out_m, t_.in_point(m + 1)) -
+                                                          t_.d(prev, t_.in_point(m + 1)));
+    for (int c : near_[t_.in(m)]) {
+      --budget;
+      const int q = t_.pos_of(c / 2);
+      if (q == m || c != t_.out(q) || std::abs(q - m) > o_.max_move_span) continue;
+      const Vec2 cp = t_.ends_point(c);
+      const bool q_last = q + 1 >= t_.size();
+      const Vec2 nxt = q_last ? Vec2::Zero() : t_.in_point(q + 1);
+      if (q + 1 == m) continue;
+      const double added = t_.d(cp, in_m) + (q_last ? 0.0 : t_.d(out_m, nxt) - t_.d(cp, nxt));
+      if (added - removed < -1e-9) {
+        move_after(m, q);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  void apply_reverse(int i, int j) {
+    touched_ = {t_.order()[i], t_.order()[j]};
+    t_.reverse_block(i, j);
+  }
+
+  // Moves the stroke at m to just after position q, keeping its direction.
+  void move_after(int m, int q) {
+    touched_ = {t_.order()[m], t_.order()[q]};
+    if (q > m) {
+      t_.reverse_block(m, q);
+      t_.reverse_block(m, q - 1);
+      t_.reverse_block(q, q);
+    } else {
+      t_.reverse_block(q + 1, m);
+      t_.reverse_block(q + 1, q + 1);
+      t_.reverse_block(q + 2, m);
+    }
+  }
+
+  Tour& t_;
+  const std::vector<std::vector<int>>& near_;
+  const OrderOptions& o_;
+  std::vector<int> touched_;
+};
+
+std::vector<Stroke> order_one_pen(const std::vector<Stroke>& strokes, const OrderOptions& o,
+                                  const Vec2& start_metric) {
+  const int n = static_cast<int>(strokes.size());
+  std::vector<Vec2> ends(2 * n);
+  for (int s = 0; s < n; ++s) {
+    ends[2 * s] = o.metric ? o.metric(strokes[s].start_mm) : strokes[s].start_mm;
+    ends[2 * s + 1] = o.metric ? o.metric(strokes[s].end_mm()) : strokes[s].end_mm();
+  }
+  std::vector<char> reversed(n, 0);
+  std::vector<int> order = nearest_neighbour_order(ends, start_metric, reversed);
+  Tour tour(ends, start_metric, order);
+  for (int s = 0; s < n; ++s) {
+    if (reversed[s]) tour.reverse_block(tour.pos_of(s), tour.pos_of(s));
+  }
+  PointGrid grid(ends);
+  std::vector<std::vector<int>> near(ends.size());
+  for (int e = 0; e < 2 * n; ++e) {
+    near[e] = grid.k_nearest(ends[e], o.neighbours, [&](int id) { return id / 2 == e / 2; });
+  }
+  Improver(tour, near, o).run(static_cast<long>(o.evaluations_per_stroke * n));
+  std::vector<Stroke> out;
+  out.reserve(n);
+  for (int s : tour.order()) {
+    const bool flip = tour.reversed(s) && strokes[s].reversible;
+    out.push_back(flip ? slicer::reversed(strokes[s]) : strokes[s]);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Stroke> merge_touching(const std::vector<Stroke>& strokes, double join_mm) {
+  const int n = static_cast<int>(strokes.size());
+  std::vector<Vec2> ends(2 * n);
+  for (int s = 0; s < n; ++s) {
+    ends[2 * s] = strokes[s].start_mm;
+    ends[2 * s + 1] = strokes[s].end_mm();
+  }
+  PointGrid grid(ends);
+  std::vector<char> used(n, 0);
+  std::vector<Stroke> out;
+  const auto find = [&](const Vec2& at, int tool) {
+    const int e = grid.nearest(at, [&](int id) {
+      const int s = id / 2;
+      return !used[s] && strokes[s].tool == tool && (id % 2 == 0 || strokes[s].reversible);
+    });
+    return (e >= 0 && (ends[e] - at).norm() <= join_mm) ? e : -1;
+  };
+  for (int s = 0; s < n; ++s) {
+    if (used[s]) continue;
+    used[s] = 1;
+    Stroke chain = strokes[s];
+    // Extend forward, then (reversible chains) backward by extending the reversed chain.
+    for (int pass = 0; pass < (chain.reversible ? 2 : 1); ++pass) {
+      if (pass == 1) chain = slicer::reversed(chain);
+      for (int e = find(chain.end_mm(), chain.tool); e >= 0; e = find(chain.end_mm(), chain.tool)) {
+        used[e / 2] = 1;
+        const Stroke& next = strokes[e / 2];
+        chain = joined(chain, e % 2 == 0 ? next : slicer::reversed(next));
+        chain.reversible = chain.reversible && next.reversible;
+      }
+    }
+    out.push_back(chain);
+  }
+  return out;
+}
+
+std::vector<Stroke> order_strokes(const std::vector<Stroke>& strokes, const OrderOptions& o) {
+  std::map<int, std::vector<Stroke>> by_tool;
+  for (const auto& s : strokes) by_tool[s.tool].push_back(s);
+  std::vector<Stroke> out;
+  Vec2 at = o.start_mm;
+  for (const auto& [tool, group] : by_tool) {
+    auto ordered = order_one_pen(group, o, o.metric ? o.metric(at) : at);
+    at = ordered.back().end_mm();
+    out.insert(out.end(), ordered.begin(), ordered.end());
+  }
+  return out;
+}
+
+std::pair<double, double> pen_up_travel(const std::vector<Stroke>& strokes, const Vec2& start,
+                                        const MetricMap& metric) {
+  double paper = 0.0, axes = 0.0;
+  Vec2 at = start;
+  for (const auto& s : strokes) {
+    paper += (s.start_mm - at).norm();
+    axes += metric ? (metric(s.start_mm) - metric(at)).norm() : (s.start_mm - at).norm();
+    at = s.end_mm();
+  }
+  return {paper, axes};
+}
+
+}  // namespace strand::post

@@ -1,0 +1,29 @@
+// Raster (PNG) and vector (SVG) previews of a PreviewScene, drawn with cairo: a top view
+// and/or an isometric view, coloured by feature or by layer, with a scale bar in mm.
+#pragma once
+
+#include <string>
+
+#include "postprocess/preview/preview_scene.h"
+
+namespace strand::post {
+
+enum class PreviewView { Top, Iso, Both };  // Both: top left, isometric right
+enum class PreviewColouring { Feature, Layer };
+
+struct ImageOptions {
+  int width_px = 1200;  // SVG: points
+  int height_px = 700;
+  PreviewView view = PreviewView::Both;
+  PreviewColouring colouring = PreviewColouring::Feature;
+  int layer = -1;           // -1: every layer; else only this layer (0-based, as ;LAYER:n)
+  bool travel = false;      // draw travel moves as thin grey lines
+  bool scale_bar = true;    // and a caption with the view name
+  double px_per_mm = 0.0;   // 0: fit the part into each panel
+};
+
+// Throws InputError when options.layer is not a layer of the scene or the size is not positive.
+std::string render_png(const PreviewScene& scene, const ImageOptions& options);
+std::string render_svg(const PreviewScene& scene, const ImageOptions& options);
+
+}  // namespace strand::post

@@ -1,0 +1,107 @@
+// Cutting a MotionProgram into drawable polylines.
+#include "postprocess/preview/preview_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "postprocess/plan/arc_segmentation.h"
+
+namespace strand::post {
+
+using slicer::MoveKind;
+using slicer::Vec3;
+
+namespace {
+
+bool continues(const PreviewPath& p, const slicer::Move& mv, bool travel) {
+  return p.travel == travel && p.layer == mv.layer && (travel || p.feature == mv.feature);
+}
+
+void append_move(PreviewPath& path, const Vec3& from, const slicer::Move& mv, double tol) {
+  if (!mv.is_arc) {
+    path.points_mm.push_back(mv.end_mm);
+    return;
+  }
+  const auto pts = segment_arc(from.head<2>(), mv.center_mm, mv.end_mm.head<2>(), mv.ccw, tol);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const double f = static_cast<double>(i + 1) / static_cast<double>(pts.size());
+    path.points_mm.push_back(Vec3(pts[i].x(), pts[i].y(), from.z() + f * (mv.end_mm.z() - from.z())));
+  }
+}
+
+void grow(PreviewScene& s, const Vec3& p, bool& first) {
+  if (first) {
+    s.min_mm = s.max_mm = p;
+    first = false;
+  }
+  s.min_mm = s.min_mm.cwiseMin(p);
+  s.max_mm = s.max_mm.cwiseMax(p);
+}
+
+void compute_bounds(PreviewScene& s) {
+  bool first = true;
+  for (const auto& p : s.paths) {
+    if (p.travel) continue;
+    for (const auto& q : p.points_mm) grow(s, q, first);
+  }
+  for (const auto& p : s.paths) {
+    if (!first) break;
+    for (const auto& q : p.points_mm) grow(s, q, first);
+  }
+}
+
+}  // namespace
+
+PreviewScene preview_scene(const slicer::MotionProgram& program, double arc_tolerance_mm) {
+  PreviewScene s;
+  for (const auto& l : program.layers) s.layer_z_mm.push_back(l.z_mm);
+  Vec3 at = program.start_mm;
+  bool open = false;  // the last path ends at `at`
+  for (const auto& mv : program.moves) {
+    if (mv.kind == MoveKind::Dwell || mv.kind == MoveKind::Raw) continue;
+    const bool travel = mv.kind == MoveKind::Travel;
+    if (!open || !continues(s.paths.back(), mv, travel)) {
+      PreviewPath p;
+      p.layer = mv.layer;
+      p.feature = mv.feature;
+      p.travel = travel;
+      p.points_mm.push_back(at);
+      s.paths.push_back(std::move(p));
+    }
+    append_move(s.paths.back(), at, mv, arc_tolerance_mm);
+    if (!travel) s.bead_width_mm = std::max(s.bead_width_mm, mv.width_mm);
+    at = mv.end_mm;
+    open = true;
+  }
+  compute_bounds(s);
+  return s;
+}
+
+Rgb feature_colour(slicer::Feature f) {
+  switch (f) {
+    case slicer::Feature::Infill: return {0.69, 0.19, 0.16};    // PrusaSlicer solid infill red
+    case slicer::Feature::Wall: return {1.0, 0.55, 0.0};        // perimeter orange
+    case slicer::Feature::Ligament: return {0.12, 0.47, 0.71};
+    case slicer::Feature::Node: return {0.17, 0.63, 0.17};
+    case slicer::Feature::Grip: return {0.58, 0.40, 0.74};
+    case slicer::Feature::Frame: return {0.55, 0.34, 0.29};
+    case slicer::Feature::Link: return {0.50, 0.50, 0.50};
+    case slicer::Feature::Pen: return {0.10, 0.10, 0.10};
+  }
+  return {0, 0, 0};
+}
+
+Rgb layer_colour(int layer, int layer_count) {
+  const double t = layer_count > 1 ? std::clamp(static_cast<double>(layer) / (layer_count - 1), 0.0, 1.0) : 0.0;
+  return {0.15 + 0.8 * t, 0.3 + 0.3 * (1.0 - std::abs(2.0 * t - 1.0)), 0.95 - 0.8 * t};
+}
+
+std::string hex_colour(const Rgb& c) {
+  char text[8];
+  auto byte = [](double v) { return static_cast<int>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); };
+  std::snprintf(text, sizeof text, "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
+  return text;
+}
+
+}  // namespace strand::post

@@ -1,0 +1,52 @@
+#include "postprocess/inspect/gcode_parser.h"
+
+#include <gtest/gtest.h>
+
+namespace strand::post {
+namespace {
+
+TEST(GcodeParser, EGrowthMarksDepositsInRelativeAndAbsoluteModes) {
+  const auto r = parse_gcode("G90\nM82\nG1 X1 Y0 Z0.2 E0.5\nG1 X2 E0.5\nG1 X3 E1.0\nM83\nG1 X4 E0.2\n");
+  ASSERT_EQ(r.program.moves.size(), 4u);
+  EXPECT_EQ(r.program.moves[0].kind, slicer::MoveKind::Deposit);
+  EXPECT_EQ(r.program.moves[1].kind, slicer::MoveKind::Travel);  // E unchanged
+  EXPECT_EQ(r.program.moves[2].kind, slicer::MoveKind::Deposit);
+  EXPECT_EQ(r.program.moves[3].kind, slicer::MoveKind::Deposit);
+}
+
+TEST(GcodeParser, WithoutEWordsG1DepositsAndG0Travels) {
+  const auto r = parse_gcode("G0 X0 Y0 Z1\nG1 X5\nG0 X6\n");
+  EXPECT_FALSE(r.has_e);
+  EXPECT_EQ(r.program.moves[1].kind, slicer::MoveKind::Deposit);
+  EXPECT_EQ(r.program.moves[2].kind, slicer::MoveKind::Travel);
+}
+
+TEST(GcodeParser, LayerMarkersDefineLayers) {
+  const auto r = parse_gcode(";LAYER_CHANGE\n;Z:0.3\n;LAYER:0\nG1 X1 Z0.3\n;LAYER_CHANGE\n;Z:0.6\n;LAYER:1\nG1 X2 Z0.6\n");
+  ASSERT_EQ(r.program.layers.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.program.layers[1].z_mm, 0.6);
+  EXPECT_EQ(r.program.moves[1].layer, 1);
+}
+
+TEST(GcodeParser, InchesAreConvertedAndReported) {
+  const auto r = parse_gcode("G20\nG1 X1 Y0\n");
+  EXPECT_TRUE(r.inches);
+  EXPECT_DOUBLE_EQ(r.program.moves[0].end_mm.x(), 25.4);
+  EXPECT_FALSE(r.issues.empty());
+}
+
+TEST(GcodeParser, NonFiniteNumberIsAnIssue) {
+  const auto r = parse_gcode("G1 X1\nG1 Xnan Y2\n");
+  ASSERT_EQ(r.issues.size(), 1u);
+  EXPECT_EQ(r.issues[0].line, 2);
+}
+
+TEST(GcodeParser, ArcCentreFromIJ) {
+  const auto r = parse_gcode("G0 X1 Y0\nG3 X0 Y1 I-1 J0\n");
+  ASSERT_EQ(r.arc_lines.size(), 1u);
+  EXPECT_TRUE(r.program.moves[1].is_arc);
+  EXPECT_EQ(r.program.moves[1].center_mm, slicer::Vec2(0, 0));
+}
+
+}  // namespace
+}  // namespace strand::post
