@@ -5,7 +5,7 @@
 
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
-#include "postprocess/preview/svg_layer.h"
+#include "postprocess/preview/preview_image.h"
 #include "cli/commands.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -41,15 +41,17 @@ int parse_layer_index(const std::string& text, std::size_t layers, const std::st
   return n;
 }
 
+// The top view of one layer with the check's crossings and touches circled: the preview's
+// SVG drawing (`strand preview --layer N --view top --travel --marks`).
 void write_svg(const post::ParsedGcode& parsed, const post::CheckReport& report,
                const CheckArgs& a) {
-  const int n = parse_layer_index(a.svg_layer[0], parsed.program.layers.size(), a.file);
-  post::LayerMarks marks;
-  for (const auto& l : report.layers) {
-    if (l.layer == n) marks = {l.crossings, l.touches};
-  }
-  slicer::write_file_atomic(a.svg_layer[1],
-                            post::layer_svg(parsed.program, n, marks, a.arc_tolerance_mm));
+  post::ImageOptions o;
+  o.layer = parse_layer_index(a.svg_layer[0], parsed.program.layers.size(), a.file);
+  o.view = post::PreviewView::Top;
+  o.travel = true;
+  o.marks = post::marks_from(report);
+  const post::PreviewScene scene = post::preview_scene(parsed.program, a.arc_tolerance_mm);
+  slicer::write_file_atomic(a.svg_layer[1], post::render_svg(scene, o));
 }
 
 int run_check(const CheckArgs& a) {

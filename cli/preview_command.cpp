@@ -25,6 +25,7 @@ struct PreviewArgs {
   std::string view = "both";
   bool travel = false;
   bool lines = false;
+  bool marks = false;
   std::string size = "1200x700";
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
 };
@@ -66,11 +67,17 @@ int run(const PreviewArgs& a) {
   if (!(a.arc_tolerance_mm > 0.0 && a.arc_tolerance_mm <= 1.0)) {
     throw InputError("--arc-tolerance: must be in (0, 1] (mm)");
   }
-  const post::ImageOptions o = image_options(a);
   const std::string gcode = slicer::read_file(a.input);
   const post::ParsedGcode parsed = post::parse_gcode(gcode);
   const post::PreviewScene scene = post::preview_scene(parsed.program, a.arc_tolerance_mm);
   if (scene.paths.empty()) throw InputError("input = " + a.input + ": no moves to draw (is it G-code?)");
+  post::ImageOptions o = image_options(a);
+  if (a.marks) {
+    post::CheckOptions check;
+    check.arc_tolerance_mm = a.arc_tolerance_mm;
+    check.touch_mm = slicer::kGcodeResolutionMm;
+    o.marks = post::marks_from(post::check_parsed(parsed, check));
+  }
   std::string bytes;
   if (ext == ".png") bytes = post::render_png(scene, o);
   if (ext == ".svg") bytes = post::render_svg(scene, o);
@@ -93,6 +100,7 @@ void add_preview_command(CLI::App& app, Action& action) {
   sub->add_option("--colour", a->colour, "colour by feature or layer (png/svg; default feature)");
   sub->add_option("--view", a->view, "top, iso or both side by side (png/svg; default both)");
   sub->add_flag("--travel", a->travel, "also draw travel moves (png/svg)");
+  sub->add_flag("--marks", a->marks, "circle crossings (red) and touches (orange) found by strand check (png/svg)");
   sub->add_flag("--lines", a->lines, "glb: strands as lines instead of tubes");
   sub->add_option("--size", a->size, "image size WxH in pixels (png/svg; default 1200x700)");
   sub->add_option("--arc-tolerance", a->arc_tolerance_mm, "chord error when drawing G2/G3 arcs [mm] (default 0.01)");

@@ -13,6 +13,5 @@ slicer::Toolpath generate_hexachiral(const ChiralParams& p);
 
 const slicer::ParamTable& hexachiral_table();
 ChiralParams hexachiral_params_from(const nlohmann::json& values);
-slicer::Toolpath hexachiral_from_values(const nlohmann::json& values);
 
 }  // namespace strand::patterns

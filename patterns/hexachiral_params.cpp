@@ -12,10 +12,4 @@ ChiralParams hexachiral_params_from(const nlohmann::json& values) {
   return chiral_params_from(ChiralKind::Hexa, "hexachiral", values);
 }
 
-slicer::Toolpath hexachiral_from_values(const nlohmann::json& values) {
-  slicer::Toolpath t = generate_hexachiral(hexachiral_params_from(values));
-  t.parameters = values;
-  return t;
-}
-
 }  // namespace strand::patterns

@@ -49,6 +49,5 @@ slicer::Toolpath generate_missing_rib(const MissingRibParams& p);
 // Parameter table (CLI flags and job keys) and the checked conversion from its values.
 const slicer::ParamTable& missing_rib_table();
 MissingRibParams missing_rib_params_from(const nlohmann::json& values);
-slicer::Toolpath missing_rib_from_values(const nlohmann::json& values);
 
 }  // namespace strand::patterns

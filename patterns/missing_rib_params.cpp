@@ -84,10 +84,4 @@ MissingRibParams missing_rib_params_from(const nlohmann::json& v) {
   return p;
 }
 
-slicer::Toolpath missing_rib_from_values(const nlohmann::json& values) {
-  slicer::Toolpath t = generate_missing_rib(missing_rib_params_from(values));
-  t.parameters = values;
-  return t;
-}
-
 }  // namespace strand::patterns

@@ -53,6 +53,5 @@ slicer::Toolpath generate_reentrant(const ReentrantParams& p);
 
 const slicer::ParamTable& reentrant_table();
 ReentrantParams reentrant_params_from(const nlohmann::json& values);
-slicer::Toolpath reentrant_from_values(const nlohmann::json& values);
 
 }  // namespace strand::patterns

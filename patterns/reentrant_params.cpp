@@ -91,10 +91,4 @@ ReentrantParams reentrant_params_from(const nlohmann::json& v) {
   return p;
 }
 
-slicer::Toolpath reentrant_from_values(const nlohmann::json& values) {
-  slicer::Toolpath t = generate_reentrant(reentrant_params_from(values));
-  t.parameters = values;
-  return t;
-}
-
 }  // namespace strand::patterns

@@ -41,6 +41,5 @@ slicer::Toolpath generate_scaffold(const ScaffoldParams& p);
 // Parameter table (CLI flags and job keys) and the checked conversion from its values.
 const slicer::ParamTable& scaffold_table();
 ScaffoldParams scaffold_params_from(const nlohmann::json& values);
-slicer::Toolpath scaffold_from_values(const nlohmann::json& values);
 
 }  // namespace strand::patterns

@@ -61,10 +61,4 @@ ScaffoldParams scaffold_params_from(const nlohmann::json& v) {
   return p;
 }
 
-slicer::Toolpath scaffold_from_values(const nlohmann::json& values) {
-  slicer::Toolpath t = generate_scaffold(scaffold_params_from(values));
-  t.parameters = values;
-  return t;
-}
-
 }  // namespace strand::patterns

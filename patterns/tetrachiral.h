@@ -14,6 +14,5 @@ double tetrachiral_thesis_porosity(const ChiralParams& p, double node_radius_mm)
 
 const slicer::ParamTable& tetrachiral_table();
 ChiralParams tetrachiral_params_from(const nlohmann::json& values);
-slicer::Toolpath tetrachiral_from_values(const nlohmann::json& values);
 
 }  // namespace strand::patterns

@@ -12,10 +12,4 @@ ChiralParams tetrachiral_params_from(const nlohmann::json& values) {
   return chiral_params_from(ChiralKind::Tetra, "tetrachiral", values);
 }
 
-slicer::Toolpath tetrachiral_from_values(const nlohmann::json& values) {
-  slicer::Toolpath t = generate_tetrachiral(tetrachiral_params_from(values));
-  t.parameters = values;
-  return t;
-}
-
 }  // namespace strand::patterns

@@ -11,12 +11,6 @@ namespace strand::slicer {
 
 namespace {
 
-std::string value_text(const nlohmann::json& v) {
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_number()) return short_number(v.get<double>());
-  return v.dump();
-}
-
 std::string type_rule(ParamType t) {
   switch (t) {
     case ParamType::Number: return "must be a number";
@@ -105,6 +99,17 @@ std::optional<nlohmann::json> normalise(const ParamDef& d, const nlohmann::json&
 }
 
 }  // namespace
+
+std::string value_text(const nlohmann::json& v) {
+  if (v.is_number()) return short_number(v.get<double>());
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_array()) {
+    std::string s;
+    for (const auto& e : v) s += (s.empty() ? "" : ",") + value_text(e);
+    return s;
+  }
+  return v.dump();
+}
 
 std::string short_number(double v) {
   if (std::isnan(v)) return "nan";

@@ -55,5 +55,8 @@ std::string problem(const std::string& table, const std::string& key,
                     const std::string& unit);
 // Short text for a number: 0.84, 250, 1e-05 (used in messages and file names).
 std::string short_number(double v);
+// A parameter value as a user writes it: numbers short, text as is, lists joined by commas
+// (0,90); used in error messages and G-code headers.
+std::string value_text(const nlohmann::json& v);
 
 }  // namespace strand::slicer

@@ -11,17 +11,6 @@ namespace strand::post {
 
 namespace {
 
-std::string value_text(const nlohmann::json& v) {
-  if (v.is_number()) return slicer::short_number(v.get<double>());
-  if (v.is_string()) return v.get<std::string>();
-  if (v.is_array()) {
-    std::string s;
-    for (const auto& e : v) s += (s.empty() ? "" : ",") + value_text(e);
-    return s;
-  }
-  return v.dump();
-}
-
 std::vector<std::string> header(const slicer::Toolpath& t, const machines::MachineProfile& m,
                                 const PlanOptions& o, const nlohmann::json& report) {
   std::vector<std::string> h;
@@ -31,25 +20,25 @@ std::vector<std::string> header(const slicer::Toolpath& t, const machines::Machi
               (m.arcs ? ", arcs as G2/G3" : ", arcs as G1 chords within " +
                                                 slicer::short_number(o.arc_tolerance_mm) + " mm"));
   h.push_back("units: mm, mm/min");
-  for (const auto& [k, v] : t.parameters.items()) h.push_back("param " + k + " = " + value_text(v));
+  for (const auto& [k, v] : t.parameters.items()) h.push_back("param " + k + " = " + slicer::value_text(v));
   h.push_back("param arc-tolerance = " + slicer::short_number(o.arc_tolerance_mm));
   for (const auto& [k, v] : t.derived.items()) {
     if (v.is_number_float()) {
       h.push_back("derived " + k + " = " + machines::fmt_fixed(v.get<double>(), 4));
     } else {
-      h.push_back("derived " + k + " = " + value_text(v));
+      h.push_back("derived " + k + " = " + slicer::value_text(v));
     }
   }
   const auto& tot = report.at("totals");
   for (const char* k : {"layers", "deposit_length_mm", "travel_length_mm", "ink_volume_ml",
                         "reservoir_ml", "syringe_fills", "syringe_loads", "time_naive_s",
                         "time_trapezoid_s"}) {
-    h.push_back("estimate " + std::string(k) + " = " + value_text(tot.at(k)));
+    h.push_back("estimate " + std::string(k) + " = " + slicer::value_text(tot.at(k)));
   }
   for (const auto& l : report.at("layers")) {
-    h.push_back("layer " + value_text(l.at("layer")) + ": length " + value_text(l.at("deposit_length_mm")) +
-                " mm, ink " + value_text(l.at("volume_ml")) + " mL, time " + value_text(l.at("time_trapezoid_s")) +
-                " s (naive " + value_text(l.at("time_naive_s")) + " s)");
+    h.push_back("layer " + slicer::value_text(l.at("layer")) + ": length " + slicer::value_text(l.at("deposit_length_mm")) +
+                " mm, ink " + slicer::value_text(l.at("volume_ml")) + " mL, time " + slicer::value_text(l.at("time_trapezoid_s")) +
+                " s (naive " + slicer::value_text(l.at("time_naive_s")) + " s)");
   }
   h.push_back("");
   return h;

@@ -83,6 +83,29 @@ void draw_paths(cairo_t* cr, const Panel& panel, const PreviewScene& s, const Im
   }
 }
 
+// Circles around the marks of the visible layers, at the layer's height; touches first so a
+// crossing at the same point stays red.
+void draw_marks(cairo_t* cr, const Panel& panel, const PreviewScene& s, const ImageOptions& o) {
+  const double radius_px = 7.0;
+  cairo_set_line_width(cr, 2.0);
+  for (bool crossings : {false, true}) {
+    if (crossings) {
+      cairo_set_source_rgb(cr, 0.88, 0.0, 0.0);
+    } else {
+      cairo_set_source_rgb(cr, 1.0, 0.55, 0.0);
+    }
+    for (const auto& m : o.marks) {
+      if (m.crossing != crossings || (o.layer >= 0 && m.layer != o.layer)) continue;
+      const bool known = m.layer >= 0 && m.layer < static_cast<int>(s.layer_z_mm.size());
+      const double z = known ? s.layer_z_mm[static_cast<std::size_t>(m.layer)] : 0.0;
+      const Vec2 c = panel.at(Vec3(m.at_mm.x(), m.at_mm.y(), z));
+      cairo_new_sub_path(cr);
+      cairo_arc(cr, c.x(), c.y(), radius_px, 0.0, 2 * M_PI);
+      cairo_stroke(cr);
+    }
+  }
+}
+
 // 1, 2 or 5 times a power of ten, about a fifth of the panel.
 double nice_length_mm(double panel_mm) {
   const double target = panel_mm / 5.0;
@@ -133,6 +156,7 @@ void draw(cairo_t* cr, const PreviewScene& s, const ImageOptions& o) {
   cairo_paint(cr);
   for (const auto& panel : layout(s, o)) {
     draw_paths(cr, panel, s, o);
+    if (!o.marks.empty()) draw_marks(cr, panel, s, o);
     if (o.scale_bar) draw_caption(cr, panel, o);
   }
 }
@@ -155,6 +179,15 @@ cairo_status_t append(void* closure, const unsigned char* data, unsigned int len
 }
 
 }  // namespace
+
+std::vector<PreviewMark> marks_from(const CheckReport& report) {
+  std::vector<PreviewMark> marks;
+  for (const auto& l : report.layers) {
+    for (const auto& c : l.crossings) marks.push_back({l.layer, c.at_mm, true});
+    for (const auto& c : l.touches) marks.push_back({l.layer, c.at_mm, false});
+  }
+  return marks;
+}
 
 std::string render_png(const PreviewScene& scene, const ImageOptions& o) {
   check_options(scene, o);

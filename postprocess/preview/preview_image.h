@@ -3,13 +3,24 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "postprocess/inspect/check.h"
 #include "postprocess/preview/preview_scene.h"
 
 namespace strand::post {
 
 enum class PreviewView { Top, Iso, Both };  // Both: top left, isometric right
 enum class PreviewColouring { Feature, Layer };
+
+// A point the check found, circled on the drawing: a crossing in red, a touch in orange.
+struct PreviewMark {
+  int layer = 0;
+  slicer::Vec2 at_mm = slicer::Vec2::Zero();
+  bool crossing = true;  // false: a touch
+};
+// Every crossing and touch of the report, in layer order.
+std::vector<PreviewMark> marks_from(const CheckReport& report);
 
 struct ImageOptions {
   int width_px = 1200;  // SVG: points
@@ -20,6 +31,7 @@ struct ImageOptions {
   bool travel = false;      // draw travel moves as thin grey lines
   bool scale_bar = true;    // and a caption with the view name
   double px_per_mm = 0.0;   // 0: fit the part into each panel
+  std::vector<PreviewMark> marks;  // drawn on the visible layers, above the paths
 };
 
 // Throws InputError when options.layer is not a layer of the scene or the size is not positive.

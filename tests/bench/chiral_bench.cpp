@@ -5,6 +5,7 @@
 
 #include "machines/profile.h"
 #include "patterns/hexachiral.h"
+#include "patterns/registry.h"
 #include "patterns/tetrachiral.h"
 #include "postprocess/plan/produce.h"
 
@@ -23,19 +24,19 @@ void run(benchmark::State& state, const strand::slicer::ParamTable& table,
 }
 
 void BM_ThesisTetrachiralToGcode(benchmark::State& state) {
-  run(state, strand::patterns::tetrachiral_table(), &strand::patterns::tetrachiral_from_values,
+  run(state, strand::patterns::tetrachiral_table(), strand::patterns::find_generator("tetrachiral")->generate,
       {{"nozzle", 0.5}, {"cell", 10}, {"cols", 2}, {"rows", 6}, {"layers", 5}, {"grip", 10}});
 }
 BENCHMARK(BM_ThesisTetrachiralToGcode)->Unit(benchmark::kMillisecond);
 
 void BM_ThesisHexachiralToGcode(benchmark::State& state) {
-  run(state, strand::patterns::hexachiral_table(), &strand::patterns::hexachiral_from_values,
+  run(state, strand::patterns::hexachiral_table(), strand::patterns::find_generator("hexachiral")->generate,
       {{"nozzle", 0.4}, {"cell", 5.3}, {"cols", 4}, {"rows", 10}, {"layers", 5}, {"grip", 10}});
 }
 BENCHMARK(BM_ThesisHexachiralToGcode)->Unit(benchmark::kMillisecond);
 
 void BM_TetrachiralLattice24x24OneLayer(benchmark::State& state) {
-  run(state, strand::patterns::tetrachiral_table(), &strand::patterns::tetrachiral_from_values,
+  run(state, strand::patterns::tetrachiral_table(), strand::patterns::find_generator("tetrachiral")->generate,
       {{"nozzle", 0.4}, {"cell", 5}, {"cols", 24}, {"rows", 24}, {"layers", 1}, {"grip", 5}});
 }
 BENCHMARK(BM_TetrachiralLattice24x24OneLayer)->Unit(benchmark::kMillisecond);

@@ -5,6 +5,7 @@
 #include "machines/profile.h"
 #include "patterns/missing_rib.h"
 #include "patterns/reentrant.h"
+#include "patterns/registry.h"
 #include "postprocess/plan/produce.h"
 
 namespace {
@@ -23,13 +24,13 @@ void to_gcode(benchmark::State& state, Table table, Generate generate, const nlo
 }
 
 void BM_MissingRibSampleToGcode(benchmark::State& state) {
-  to_gcode(state, &patterns::missing_rib_table, &patterns::missing_rib_from_values,
+  to_gcode(state, &patterns::missing_rib_table, patterns::find_generator("missing-rib")->generate,
            {{"nozzle", 0.6}, {"rib", 5}, {"angle", 20}, {"rows", 6}, {"cols", 6}, {"layers", 3}});
 }
 BENCHMARK(BM_MissingRibSampleToGcode)->Unit(benchmark::kMillisecond);
 
 void BM_ReentrantSampleToGcode(benchmark::State& state) {
-  to_gcode(state, &patterns::reentrant_table, &patterns::reentrant_from_values,
+  to_gcode(state, &patterns::reentrant_table, patterns::find_generator("reentrant")->generate,
            {{"nozzle", 0.84}, {"cell-width", 8}, {"cell-height", 8}, {"angle", 20}, {"rows", 6}, {"cols", 5}, {"height", 5}});
 }
 BENCHMARK(BM_ReentrantSampleToGcode)->Unit(benchmark::kMillisecond);

@@ -4,6 +4,7 @@
 
 #include "machines/profile.h"
 #include "patterns/scaffold.h"
+#include "patterns/registry.h"
 #include "postprocess/plan/produce.h"
 
 namespace {
@@ -14,7 +15,7 @@ void BM_ThesisScaffoldToGcode(benchmark::State& state) {
       patterns::scaffold_table(), {{"nozzle", 0.84}, {"gap", 1.6}, {"size", "36x36"}, {"height", 13}});
   const auto machine = machines::load_profile("deltawasp-2040-clay");
   for (auto _ : state) {
-    const auto t = patterns::scaffold_from_values(values);
+    const auto t = patterns::find_generator("scaffold")->generate(values);
     auto out = post::produce(t, machine, post::plan_options_from(t, 0.01), "bench.gcode");
     benchmark::DoNotOptimize(out.gcode.data());
   }

@@ -1,6 +1,8 @@
 // `strand preview` from the outside: every extension from one G-code, bad input.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "tests/support/cli_runner.h"
 #include "tests/support/png_pixels.h"
 
@@ -29,6 +31,19 @@ TEST(PreviewCli, OneLayerDrawsLessThanAll) {
   ASSERT_EQ(run_strand("preview s.gcode -o all.png --view top", dir).exit_code, 0);
   ASSERT_EQ(run_strand("preview s.gcode -o one.png --view top --layer 0", dir).exit_code, 0);
   EXPECT_LT(png_stats(slurp(dir + "/one.png")).drawn_fraction, png_stats(slurp(dir + "/all.png")).drawn_fraction);
+}
+
+TEST(PreviewCli, MarksCircleCrossingsAndCheckDrawsTheSameLayerView) {
+  const auto dir = fresh_dir("preview-marks");
+  std::ofstream(dir + "/x.gcode") << ";LAYER:0\nG0 X0 Y0 Z0.5\nG1 X10 Y10 E1\nG1 X10 Y0 E2\nG1 X0 Y10 E3\n";
+  ASSERT_EQ(run_strand("preview x.gcode -o plain.png --view top", dir).exit_code, 0);
+  ASSERT_EQ(run_strand("preview x.gcode -o marked.png --view top --marks", dir).exit_code, 0);
+  EXPECT_EQ(colour_spot(slurp(dir + "/plain.png"), 224, 0, 0, 40).count, 0);
+  EXPECT_GT(colour_spot(slurp(dir + "/marked.png"), 224, 0, 0, 40).count, 20);
+  // `check --svg-layer` is the preview's top view of that layer with travels and marks.
+  EXPECT_EQ(run_strand("check x.gcode --svg-layer 0 check.svg", dir).exit_code, 1);
+  ASSERT_EQ(run_strand("preview x.gcode -o view.svg --view top --layer 0 --travel --marks", dir).exit_code, 0);
+  EXPECT_EQ(slurp(dir + "/check.svg"), slurp(dir + "/view.svg"));
 }
 
 struct BadCase {

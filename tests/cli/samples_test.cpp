@@ -7,22 +7,12 @@
 
 #include "patterns/registry.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/sample_jobs.h"
 
 namespace strand::testing {
 namespace {
 
-namespace fs = std::filesystem;
-
-std::vector<fs::path> json_files(const std::string& dir) {
-  std::vector<fs::path> files;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    if (e.is_regular_file() && e.path().extension() == ".json") files.push_back(e.path());
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-const std::string kSamples = std::string(STRAND_SOURCE_DIR) + "/samples";
+const std::string kSamples = samples_dir();
 
 TEST(Samples, EveryGeneratorHasAnExampleJob) {
   std::set<std::string> covered;

@@ -1,6 +1,7 @@
 // Hexachiral specimens checked on the emitted G-code parsed back: no crossing inside a
 // layer, one strand per layer, size as reported; and the input rules.
 #include "patterns/hexachiral.h"
+#include "patterns/registry.h"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +15,7 @@ const nlohmann::json kThesis = {{"nozzle", 0.4}, {"cell", 5.3}, {"rows", 10},
                                 {"cols", 4},     {"layers", 3}, {"grip", 10}};
 
 chiral_testing::Emitted emit_hexa(const nlohmann::json& given) {
-  return chiral_testing::emit(hexachiral_table(), &hexachiral_from_values, given);
+  return chiral_testing::emit(hexachiral_table(), find_generator("hexachiral")->generate, given);
 }
 
 double min_cell_for(const nlohmann::json& given) {
@@ -60,7 +61,7 @@ TEST(HexachiralParams, CellTooSmallForTheNodeNamesTheLimit) {
   bad["cell"] = 3;
   const double limit = min_cell_for(kThesis);
   try {
-    hexachiral_from_values(slicer::resolve_params(hexachiral_table(), bad));
+    find_generator("hexachiral")->generate(slicer::resolve_params(hexachiral_table(), bad));
     FAIL();
   } catch (const InputError& ex) {
     EXPECT_NE(std::string(ex.what()).find("hexachiral.cell = 3: must be >= " +

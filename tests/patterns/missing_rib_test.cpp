@@ -1,6 +1,7 @@
 // Missing-rib lattice checked on the emitted G-code parsed back: no crossing, one strand per
 // layer, the size of the report, and the ribs of the intended lattice.
 #include "patterns/missing_rib.h"
+#include "patterns/registry.h"
 
 #include <gtest/gtest.h>
 
@@ -26,7 +27,7 @@ namespace {
 using Emitted = testing::EmittedPart;
 
 Emitted emit(const nlohmann::json& given) {
-  return testing::emit_on_delta(missing_rib_table(), &missing_rib_from_values, given);
+  return testing::emit_on_delta(missing_rib_table(), find_generator("missing-rib")->generate, given);
 }
 
 const nlohmann::json kSample = {{"nozzle", 0.6}, {"rib", 5.0}, {"angle", 20}, {"rows", 4}, {"cols", 5}, {"layers", 3}};
@@ -148,7 +149,7 @@ TEST(MissingRib, SampleJobHasNoCrossingAndOneStrandPerLayer) {
 }
 
 std::string error_of(const nlohmann::json& given) {
-  return testing::input_error_of(missing_rib_table(), &missing_rib_from_values, given);
+  return testing::input_error_of(missing_rib_table(), find_generator("missing-rib")->generate, given);
 }
 
 TEST(MissingRibParams, RibTooShortForTheNozzleNamesTheLimit) {

@@ -1,6 +1,7 @@
 // Re-entrant honeycomb checked on the emitted G-code parsed back: no crossing, one strand per
 // layer, the size of the report, and the ribs of a bow-tie honeycomb at the given angle.
 #include "patterns/reentrant.h"
+#include "patterns/registry.h"
 
 #include <gtest/gtest.h>
 
@@ -26,7 +27,7 @@ namespace {
 using Emitted = testing::EmittedPart;
 
 Emitted emit(const nlohmann::json& given) {
-  return testing::emit_on_delta(reentrant_table(), &reentrant_from_values, given);
+  return testing::emit_on_delta(reentrant_table(), find_generator("reentrant")->generate, given);
 }
 
 const nlohmann::json kSample = {{"nozzle", 0.6},  {"cell-width", 8.0}, {"cell-height", 7.0},
@@ -121,7 +122,7 @@ TEST(Reentrant, SampleJobHasNoCrossingAndOneStrandPerLayer) {
 }
 
 std::string error_of(const nlohmann::json& given) {
-  return testing::input_error_of(reentrant_table(), &reentrant_from_values, given);
+  return testing::input_error_of(reentrant_table(), find_generator("reentrant")->generate, given);
 }
 
 TEST(ReentrantParams, OddRowsAreRejected) {

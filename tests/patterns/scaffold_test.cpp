@@ -1,5 +1,6 @@
 // Scaffold properties checked on the emitted G-code parsed back, not on internal state.
 #include "patterns/scaffold.h"
+#include "patterns/registry.h"
 
 #include <gtest/gtest.h>
 
@@ -27,7 +28,7 @@ struct Emitted {
 Emitted emit(const nlohmann::json& given, const std::string& machine = "deltawasp-2040-clay") {
   const auto values = slicer::resolve_params(scaffold_table(), given);
   Emitted e;
-  e.toolpath = scaffold_from_values(values);
+  e.toolpath = find_generator("scaffold")->generate(values);
   const auto m = machines::load_profile(machine);
   e.gcode = post::produce(e.toolpath, m, post::plan_options_from(e.toolpath, 0.01), "x.gcode").gcode;
   e.parsed = post::parse_gcode(e.gcode);

@@ -1,6 +1,7 @@
 // Tetrachiral specimens checked on the emitted G-code parsed back: no crossing inside a
 // layer, one strand per layer, size as reported; and the input rules.
 #include "patterns/tetrachiral.h"
+#include "patterns/registry.h"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +19,7 @@ const nlohmann::json kThesis = {{"nozzle", 0.5}, {"cell", 10},  {"rows", 6},
                                 {"cols", 2},     {"layers", 3}, {"grip", 10}};
 
 chiral_testing::Emitted emit_tetra(const nlohmann::json& given) {
-  return emit(tetrachiral_table(), &tetrachiral_from_values, given);
+  return emit(tetrachiral_table(), find_generator("tetrachiral")->generate, given);
 }
 
 double min_cell_for(const nlohmann::json& given) {
@@ -69,7 +70,7 @@ TEST(Tetrachiral, GripsAddTheirLengthAtBothEnds) {
 
 void expect_input_error(const nlohmann::json& given, const std::string& needle) {
   try {
-    tetrachiral_from_values(slicer::resolve_params(tetrachiral_table(), given));
+    find_generator("tetrachiral")->generate(slicer::resolve_params(tetrachiral_table(), given));
     FAIL() << "expected InputError for " << given.dump();
   } catch (const InputError& ex) {
     EXPECT_NE(std::string(ex.what()).find(needle), std::string::npos) << ex.what();

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <vector>
 
 namespace strand::testing {
 
@@ -24,39 +25,70 @@ cairo_status_t read(void* closure, unsigned char* data, unsigned int length) {
   return CAIRO_STATUS_SUCCESS;
 }
 
+// Decoded RGB24 pixels (0x00rrggbb); width 0 when the bytes are not a PNG.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> pixels;
+  std::uint32_t at(int x, int y) const { return pixels[static_cast<std::size_t>(y * width + x)]; }
+};
+
+Image decode(const std::string& png_bytes) {
+  Reader r{&png_bytes};
+  cairo_surface_t* s = cairo_image_surface_create_from_png_stream(&read, &r);
+  Image img;
+  if (cairo_surface_status(s) == CAIRO_STATUS_SUCCESS) {
+    cairo_surface_flush(s);
+    img.width = cairo_image_surface_get_width(s);
+    img.height = cairo_image_surface_get_height(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    const unsigned char* px = cairo_image_surface_get_data(s);
+    for (int y = 0; y < img.height; ++y) {
+      for (int x = 0; x < img.width; ++x) {
+        std::uint32_t v;
+        std::memcpy(&v, px + y * stride + 4 * x, 4);
+        img.pixels.push_back(v & 0xffffffu);
+      }
+    }
+  }
+  cairo_surface_destroy(s);
+  return img;
+}
+
+int difference(std::uint32_t a, std::uint32_t b) {
+  int diff = 0;
+  for (int c = 0; c < 3; ++c) {
+    diff += std::abs(static_cast<int>((a >> (8 * c)) & 0xff) - static_cast<int>((b >> (8 * c)) & 0xff));
+  }
+  return diff;
+}
+
 }  // namespace
 
 PngStats png_stats(const std::string& png_bytes) {
-  Reader r{&png_bytes};
-  cairo_surface_t* s = cairo_image_surface_create_from_png_stream(&read, &r);
-  PngStats st;
-  if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS) {
-    cairo_surface_destroy(s);
-    return st;
-  }
-  cairo_surface_flush(s);
-  st.width = cairo_image_surface_get_width(s);
-  st.height = cairo_image_surface_get_height(s);
-  const int stride = cairo_image_surface_get_stride(s);
-  const unsigned char* px = cairo_image_surface_get_data(s);
-  auto pixel = [&](int x, int y) {
-    std::uint32_t v;
-    std::memcpy(&v, px + y * stride + 4 * x, 4);
-    return v & 0xffffffu;
-  };
-  const std::uint32_t bg = pixel(0, 0);
+  const Image img = decode(png_bytes);
+  PngStats st{img.width, img.height};
+  if (img.width == 0) return st;
+  const std::uint32_t bg = img.at(0, 0);
   long drawn = 0;
-  for (int y = 0; y < st.height; ++y) {
-    for (int x = 0; x < st.width; ++x) {
-      const std::uint32_t v = pixel(x, y);
-      int diff = 0;
-      for (int c = 0; c < 3; ++c) diff += std::abs(static_cast<int>((v >> (8 * c)) & 0xff) - static_cast<int>((bg >> (8 * c)) & 0xff));
-      drawn += diff > 48;
+  for (const std::uint32_t v : img.pixels) drawn += difference(v, bg) > 48;
+  st.drawn_fraction = static_cast<double>(drawn) / (static_cast<double>(st.width) * st.height);
+  return st;
+}
+
+ColourSpot colour_spot(const std::string& png_bytes, int r, int g, int b, int tolerance) {
+  const Image img = decode(png_bytes);
+  const auto wanted = static_cast<std::uint32_t>((r << 16) | (g << 8) | b);
+  ColourSpot spot;
+  for (int y = 0; y < img.height; ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      if (difference(img.at(x, y), wanted) > tolerance) continue;
+      ++spot.count;
+      spot.x_px += x;
+      spot.y_px += y;
     }
   }
-  st.drawn_fraction = static_cast<double>(drawn) / (static_cast<double>(st.width) * st.height);
-  cairo_surface_destroy(s);
-  return st;
+  if (spot.count > 0) spot.x_px /= static_cast<double>(spot.count), spot.y_px /= static_cast<double>(spot.count);
+  return spot;
 }
 
 }  // namespace strand::testing

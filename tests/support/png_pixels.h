@@ -13,4 +13,12 @@ struct PngStats {
 // The background is the colour of the top-left pixel. width = 0 if the bytes are not a PNG.
 PngStats png_stats(const std::string& png_bytes);
 
+// Pixels within `tolerance` (sum of channel differences, 0..765) of the colour r, g, b (0..255):
+// how many, and their centre in pixels. count = 0 if none or not a PNG.
+struct ColourSpot {
+  long count = 0;
+  double x_px = 0.0, y_px = 0.0;
+};
+ColourSpot colour_spot(const std::string& png_bytes, int r, int g, int b, int tolerance);
+
 }  // namespace strand::testing

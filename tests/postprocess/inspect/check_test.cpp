@@ -5,6 +5,7 @@
 #include "machines/plotter_kinematics.h"
 #include "machines/profile.h"
 #include "patterns/scaffold.h"
+#include "patterns/registry.h"
 #include "postprocess/plan/produce.h"
 
 namespace strand::post {
@@ -119,7 +120,7 @@ TEST(Check, ThesisScaffoldPassesWithOneStrandPerLayer) {
   const auto values =
       slicer::resolve_params(patterns::scaffold_table(),
                              {{"nozzle", 0.84}, {"gap", 1.6}, {"size", "36x36"}, {"height", 13}});
-  const auto t = patterns::scaffold_from_values(values);
+  const auto t = patterns::find_generator("scaffold")->generate(values);
   const auto out = produce(t, delta(), plan_options_from(t, 0.01), "s.gcode");
   const auto r = check(out.gcode, &delta());
   EXPECT_TRUE(r.ok()) << to_text(r);

@@ -7,55 +7,31 @@
 #include <algorithm>
 #include <charconv>
 #include <iostream>
-#include <map>
 #include <sstream>
 
 #include "patterns/registry.h"
 #include "postprocess/plan/estimate.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "slicer/input_error.h"
+#include "tests/support/sample_jobs.h"
 
 namespace strand::post {
 namespace {
 
 using machines::DepositionModel;
 
-// Small valid parameter sets for generators this test knows. A generator merged later that
-// is missing here runs with its table defaults plus "nozzle" if it has one; if that is not
-// a valid set, it is reported and skipped (add it here).
-const std::map<std::string, nlohmann::json>& known_params() {
-  static const std::map<std::string, nlohmann::json> kParams = {
-      {"scaffold", {{"nozzle", 0.84}, {"gap", 1.6}, {"size", {10, 10}}, {"layers", 3}}},
-      {"tetrachiral", {{"nozzle", 0.5}, {"cell", 10}, {"rows", 2}, {"cols", 2}, {"layers", 2}, {"grip", 5}}},
-      {"hexachiral", {{"nozzle", 0.4}, {"cell", 5.3}, {"rows", 2}, {"cols", 2}, {"layers", 2}, {"grip", 5}}},
-      {"missing-rib", {{"nozzle", 0.6}, {"rib", 5}, {"angle", 20}, {"rows", 2}, {"cols", 2}, {"layers", 2}}},
-      {"reentrant", {{"nozzle", 0.84}, {"cell-width", 8}, {"cell-height", 8}, {"angle", 20}, {"rows", 2}, {"cols", 2}, {"layers", 2}}},
-  };
-  return kParams;
-}
-
-std::optional<slicer::Toolpath> small_toolpath(const patterns::GeneratorSpec& g) {
-  nlohmann::json given = nlohmann::json::object();
-  if (auto it = known_params().find(g.name); it != known_params().end()) {
-    given = it->second;
-  } else {
-    for (const auto& d : g.table().defs) {
-      if (d.key == "nozzle") given["nozzle"] = 0.5;
-    }
-  }
-  try {
-    return g.generate(slicer::resolve_params(g.table(), given));
-  } catch (const InputError& e) {
-    ADD_FAILURE() << "generator " << g.name << ": no valid small parameter set known ("
-                  << e.what() << "); add one to known_params()";
+// Each generator's sample job (samples/*.json; samples_test requires one per generator).
+std::optional<slicer::Toolpath> sample_toolpath(const patterns::GeneratorSpec& g) {
+  const auto it = testing::sample_params().find(g.name);
+  if (it == testing::sample_params().end()) {
+    ADD_FAILURE() << "generator " << g.name << " has no sample job in samples/";
     return std::nullopt;
   }
+  return g.generate(slicer::resolve_params(g.table(), it->second));
 }
 
-bool is_diw(DepositionModel m) {
-  return m == DepositionModel::ManualValve || m == DepositionModel::Valve ||
-         m == DepositionModel::EVolumetric || m == DepositionModel::None;
-}
+// Printers (not pen plotters) with any deposition model.
+bool is_diw(const machines::MachineProfile& m) { return !m.plotter.enabled; }
 
 double geometric_volume_mm3(const slicer::Toolpath& t) {
   double v = 0.0;
@@ -163,11 +139,11 @@ void check_one(const slicer::Toolpath& t, const machines::MachineProfile& m) {
 TEST(Produce, EveryGeneratorWithEveryDiwProfile) {
   int checked = 0;
   for (const auto& g : patterns::generators()) {
-    const auto t = small_toolpath(g);
+    const auto t = sample_toolpath(g);
     if (!t) continue;
     for (const auto& [name, description] : machines::list_profiles()) {
       const auto m = machines::load_profile(name);
-      if (!is_diw(m.deposition.model)) continue;
+      if (!is_diw(m)) continue;
       SCOPED_TRACE(g.name + " on " + name);
       check_one(*t, m);
       ++checked;
@@ -177,7 +153,7 @@ TEST(Produce, EveryGeneratorWithEveryDiwProfile) {
 }
 
 TEST(Produce, HeaderCarriesBothTimesAndInk) {
-  const auto t = small_toolpath(*patterns::find_generator("scaffold"));
+  const auto t = sample_toolpath(*patterns::find_generator("scaffold"));
   const auto out = produce(*t, machines::load_profile("deltawasp-2040-clay"), plan_options_from(*t, 0.01), "x.gcode");
   for (const char* k : {"; estimate time_naive_s = ", "; estimate time_trapezoid_s = ",
                         "; estimate ink_volume_ml = ", "; estimate syringe_fills = ", "; layer 2: length "}) {
@@ -186,7 +162,7 @@ TEST(Produce, HeaderCarriesBothTimesAndInk) {
 }
 
 TEST(Produce, ViewerCopyHasRelativeEAndSaysNotForPrinting) {
-  const auto t = small_toolpath(*patterns::find_generator("scaffold"));
+  const auto t = sample_toolpath(*patterns::find_generator("scaffold"));
   const auto m = machines::load_profile("deltawasp-2040-clay-valve");
   const auto out = produce(*t, m, plan_options_from(*t, 0.01), "x.gcode", true);
   EXPECT_EQ(out.gcode.find(" E"), std::string::npos);

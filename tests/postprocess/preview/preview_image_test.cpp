@@ -63,6 +63,31 @@ TEST(PreviewImage, SvgIsVectorWithTheSameView) {
   EXPECT_NE(svg.find("width=\"400pt\""), std::string::npos);
 }
 
+// Layer 0 crosses itself at (5, 5); layer 1 is one straight line.
+const char* kCrossing =
+    ";LAYER:0\nG0 X0 Y0 Z0.5\n;WIDTH:1\nG1 X10 Y10 E1\nG1 X10 Y0 E2\nG1 X0 Y10 E3\n"
+    ";LAYER:1\nG0 X0 Y0 Z1\nG1 X20 Y0 E4\n";
+
+TEST(PreviewImage, MarksCircleTheCheckedCrossingInRed) {
+  const ParsedGcode parsed = parse_gcode(kCrossing);
+  const auto marks = marks_from(check_parsed(parsed, {}));
+  ASSERT_EQ(marks.size(), 1u);
+  EXPECT_TRUE(marks[0].crossing);
+  EXPECT_NEAR(marks[0].at_mm.x(), 5.0, 1e-9);
+  const PreviewScene scene = preview_scene(parsed.program, 0.01);
+  ImageOptions o = known_scale(0);
+  const auto red = [&] { return strand::testing::colour_spot(render_png(scene, o), 224, 0, 0, 40); };
+  EXPECT_EQ(red().count, 0) << "no marks unless asked";
+  o.marks = marks;
+  const auto spot = red();
+  ASSERT_GT(spot.count, 20);
+  // 10 px/mm, the scene (x 0..20, y 0..10 over both layers) centred: (5, 5) is 50 px left.
+  EXPECT_NEAR(spot.x_px, 150.0, 1.5);
+  EXPECT_NEAR(spot.y_px, 200.0, 1.5);
+  o.layer = 1;
+  EXPECT_EQ(red().count, 0) << "marks of other layers are not drawn";
+}
+
 TEST(PreviewImage, SameSceneSameBytes) {
   EXPECT_EQ(render_png(squares(), known_scale(-1)), render_png(squares(), known_scale(-1)));
 }
