@@ -1,3 +1,8 @@
+// Room postprocess/inspect (library strand_inspect; links plan): reading any G-code, ours or a
+// slicer's, back into a MotionProgram (gcode_parser.h) and judging it: strands per layer,
+// self-crossings and touches (crossings.h), forbidden arcs, build volume, units. It writes
+// no G-code and draws nothing; previews of what it finds live in preview/.
+//
 // `strand check`: reads any G-code and reports, per layer, strands, self-crossings and
 // touches, plus forbidden arcs, moves outside the build volume and parse problems.
 #pragma once

@@ -1,3 +1,9 @@
+// Room postprocess/plan (library strand_plan; links slicer, machines): everything between a
+// generator's Toolpath and the bytes of a job's files. It owns placement on the machine, arc
+// segmentation with a bounded chord error, per-feature speeds, deposition (volumetric E,
+// valves), travels, the motion-time and ink estimates, the G-code header and the report
+// (produce.h runs one job end to end). Nothing here reads G-code back; that is inspect/.
+//
 // Planning: Toolpath (part frame) -> MotionProgram (machine frame). Places the part,
 // segments arcs where the firmware forbids G2/G3, assigns per-feature speeds and deposit
 // volumes, and adds travels (with a z lift) between strokes.

@@ -1,3 +1,9 @@
+// Room postprocess/plot (library strand_plot; links slicer, machines): pen plotting after the
+// SVG import. It owns the layout on the paper (plot_layout.h: pens, fit, flattening, hatch
+// fills with Clipper), merging and ordering strokes to cut pen-up travel
+// (stroke_ordering.h, point_grid.h) and this planner; the machine's own words stay in
+// machines/pen_emitter.
+//
 // Planning for pen plotters: a plotting Toolpath -> MotionProgram in the paper frame (pen
 // up/down as z 1/0 travels, dwells after servo moves, drawing as deposits split so the
 // kinematic bow stays within budget), and the estimate computed from that same program.

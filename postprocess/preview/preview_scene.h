@@ -1,3 +1,8 @@
+// Room postprocess/preview (library strand_preview; links inspect, plan): pictures of a
+// MotionProgram for people. It owns the scene (this file: polylines by layer and feature,
+// colours), the cairo PNG/SVG views with optional check marks (preview_image.h), the
+// self-contained HTML viewer and the glTF tubes. It never changes a program.
+//
 // What previews draw: a MotionProgram cut into polylines (deposit or travel, one layer and
 // feature each, arcs flattened), with bounds and the colour scheme shared by every format.
 #pragma once
