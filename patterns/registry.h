@@ -17,6 +17,11 @@ struct GeneratorSpec {
   // Builds the toolpath from values already checked by resolve_params; checks the rules
   // that tie parameters together and throws InputError listing every violation.
   slicer::Toolpath (*generate)(const nlohmann::json& values);
+  // For `--wrap full` on a cylinder: the same design made periodic in x with period
+  // `period_mm` (the circumference where u is measured), a whole number of cells around it,
+  // no border along the seam, and the strand closing across it (x beyond the period wraps).
+  // The adjusted cell size goes into Toolpath::derived. nullptr: the design cannot wrap.
+  slicer::Toolpath (*generate_wrapped)(const nlohmann::json& values, double period_mm) = nullptr;
 };
 
 const std::vector<GeneratorSpec>& generators();
