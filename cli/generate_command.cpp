@@ -11,6 +11,7 @@
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/params.h"
+#include "slicer/substrate_params.h"
 #include "slicer/tolerances.h"
 
 namespace strand::cli {
@@ -20,6 +21,8 @@ namespace {
 struct GenerateArgs {
   std::map<std::string, std::string> text;         // flag -> raw text
   std::map<std::string, CLI::Option*> options;
+  std::map<std::string, std::string> substrate_text;  // substrate table key -> raw text
+  std::map<std::string, CLI::Option*> substrate_options;
   std::string machine = "deltawasp-2040-clay";
   std::string output;
   std::string report;
@@ -74,7 +77,14 @@ int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
   for (const auto& d : table.defs) {
     if (a.options.at(d.key)->count() > 0) given[d.key] = slicer::parse_param_text(table, d, a.text.at(d.key));
   }
-  return run_and_print(spec, given, {a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e});
+  const auto& st = slicer::substrate_table();
+  nlohmann::json substrate = nlohmann::json::object();
+  for (const auto& d : st.defs) {
+    if (a.substrate_options.at(d.key)->count() > 0)
+      substrate[d.key] = slicer::parse_param_text(st, d, a.substrate_text.at(d.key));
+  }
+  return run_and_print(spec, given,
+                       {a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e, substrate});
 }
 
 // Job file: {"generator", "machine", "params": {flag: value}, "output", "report",
@@ -103,8 +113,17 @@ void add_generator_commands(CLI::App& app, Action& action) {
       args->options[d.key] =
           sub->add_option("--" + d.key, args->text[d.key], help_for(d))->type_name(type_name_for(d));
     }
+    for (const auto& d : slicer::substrate_table().defs) {
+      args->substrate_options[d.key] = sub->add_option("--" + slicer::substrate_flag(d.key),
+                                                       args->substrate_text[d.key], help_for(d))
+                                           ->type_name(type_name_for(d))
+                                           ->group("Curved substrate");
+    }
     sub->add_option("--machine", args->machine, "machine profile name or path to a .json profile (default deltawasp-2040-clay)");
-    sub->add_option("-o,--output", args->output, "G-code file to write (default " + spec.name + ".gcode)");
+    sub->add_option(
+        "-o,--output", args->output,
+        "G-code file to write (default " + spec.name +
+            ".gcode; a robot cell writes <name>.csv with .java, .src, .dat, .extruder.gcode)");
     sub->add_option("--report", args->report, "write a JSON report here");
     sub->add_option("--arc-tolerance", args->arc_tolerance_mm,
                     "max chord error when arcs become G1 segments [mm] (default 0.01)");

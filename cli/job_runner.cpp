@@ -1,6 +1,7 @@
 // Job parsing and the generate-plan-emit-write chain, shared by every command that runs jobs.
 #include "cli/job_runner.h"
 
+#include "cli/curved_job.h"
 #include "machines/profile.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -10,8 +11,8 @@ namespace strand::cli {
 
 namespace {
 
-const char* const kJobKeys[] = {"generator", "machine", "params", "output",
-                                "report", "arc-tolerance", "viewer-e", "description"};
+const char* const kJobKeys[] = {"generator", "machine", "params", "output", "report",
+                                "arc-tolerance", "viewer-e", "substrate", "description"};
 
 bool is_job_key(const std::string& k) {
   for (const char* known : kJobKeys) {
@@ -34,7 +35,8 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   for (const auto& [k, v] : j.items()) {
     if (!is_job_key(k)) {
       problems.push_back(where + "." + k +
-                         ": unknown key (generator, machine, params, output, report, arc-tolerance, viewer-e, description)");
+                         ": unknown key (generator, machine, params, output, report, "
+                         "arc-tolerance, viewer-e, substrate, description)");
     }
   }
   if (!problems.empty()) throw InputError(problems);
@@ -53,6 +55,12 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   }
   s.settings.viewer_e = j.value("viewer-e", false);
   s.params = j.value("params", nlohmann::json::object());
+  if (j.contains("substrate") && !j.at("substrate").is_object()) {
+    throw InputError(
+        where + ".substrate = " + j.at("substrate").dump() +
+        ": must be an object like {\"type\": \"cylinder\", \"radius\": 20, \"length\": 100}");
+  }
+  s.settings.substrate = j.value("substrate", nlohmann::json::object());
   s.description = j.value("description", std::string());
   return s;
 }
@@ -63,9 +71,20 @@ post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohm
     throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
                      ": must be in (0, 1] (mm)");
   }
+  if (!s.substrate.empty()) {
+    throw InputError(
+        "substrate: a job on a curved substrate writes robot programs or 4-axis G-code; run it "
+        "with strand job or strand " +
+        generator.name + ", not in a sweep");
+  }
   const nlohmann::json values = slicer::resolve_params(generator.table(), params);
-  const slicer::Toolpath t = generator.generate(values);
   const machines::MachineProfile machine = machines::load_profile(s.machine);
+  if (machine.robot.enabled || machine.rotary.enabled) {
+    throw InputError("machine = " + s.machine + " (" + machines::to_string(machine.volume.kind) +
+                     "): prints on a cylinder; give --substrate cylinder --substrate-radius MM "
+                     "--substrate-length MM");
+  }
+  const slicer::Toolpath t = generator.generate(values);
   return post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm),
                        job_output_path(generator, s), s.viewer_e);
 }
@@ -83,6 +102,7 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& s) {
+  if (!s.substrate.empty()) return run_curved_job(generator, params, s);
   post::Produced produced = produce_job(generator, params, s);
   const std::string report = produced.report.dump(2) + "\n";
   slicer::write_file_atomic(job_output_path(generator, s), produced.gcode);

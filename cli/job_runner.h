@@ -17,10 +17,12 @@ struct JobSettings {
   std::string report;  // empty: no report file
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
   bool viewer_e = false;  // also write the preview-only copy with computed E
+  // Curved substrate, keys of slicer::substrate_table() ("type", "radius", ...); empty = flat.
+  nlohmann::json substrate = nlohmann::json::object();
 };
 
 // A job file's content, checked: {"generator", "machine", "params", "output", "report",
-// "arc-tolerance", "description"}.
+// "arc-tolerance", "viewer-e", "substrate", "description"}.
 struct JobSpec {
   const patterns::GeneratorSpec* generator = nullptr;
   nlohmann::json params = nlohmann::json::object();  // as given, keys = CLI long flags
@@ -32,8 +34,9 @@ struct JobSpec {
 // Throws InputError naming the key path.
 JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where);
 
-// Generates, plans and emits in memory; nothing is written. Throws InputError for bad
-// parameters, an unknown machine or a part that does not fit.
+// Generates, plans and emits a flat (planar) job in memory; nothing is written. Throws
+// InputError for bad parameters, an unknown machine, a part that does not fit, or a job on a
+// curved substrate (those run through run_job, see curved_job.h).
 post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                            const JobSettings& settings);
 
@@ -43,7 +46,9 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 // "out/x.gcode" -> "out/x.viewer-e.gcode": the preview-only copy beside the printable file.
 std::string viewer_output_path(const std::string& gcode_path);
 
-// produce_job, then writes the G-code (report, viewer copy) atomically; returns what was produced.
+// produce_job, then writes the G-code (report, viewer copy) atomically; returns what was
+// produced. A job with a substrate runs as a curved job (curved_job.h) and returns its
+// report and summary.
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& settings);
 

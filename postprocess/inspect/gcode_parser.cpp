@@ -209,6 +209,7 @@ class Reader {
       case 91: relative_ = true; relative_e_ = true; break;
       case 92:
         if (auto e = w.get('E')) e_ = *e;
+        if (auto a = w.get('A')) a_ = *a;
         for (int a = 0; a < 3; ++a) {
           if (auto v = w.get("XYZ"[a])) pos_[a] = *v * scale_;
         }
@@ -226,6 +227,7 @@ class Reader {
     mv.layer = layer_;
     out_.program.moves.push_back(mv);
     out_.move_lines.push_back(n);  // one line per move, dwells included
+    if (has_a_) out_.a_deg.push_back(a_);
   }
 
   void motion(int code, const Words& w, int n) {
@@ -237,6 +239,12 @@ class Reader {
         target[a] = relative_ ? pos_[a] + *v * scale_ : *v * scale_;
         moved = true;
       }
+    }
+    if (auto a = w.get('A')) {  // rotary axis, degrees; earlier moves were at the old A
+      if (!has_a_) out_.a_deg.assign(out_.program.moves.size(), a_);
+      has_a_ = true;
+      a_ = relative_ ? a_ + *a : *a;
+      moved = true;
     }
     double de = 0.0;
     if (auto e = w.get('E')) {
@@ -263,6 +271,7 @@ class Reader {
     mv.layer = layer_;
     out_.program.moves.push_back(std::move(mv));
     out_.move_lines.push_back(n);
+    if (has_a_) out_.a_deg.push_back(a_);
     if (out_.program.moves.size() == 1) out_.program.start_mm = pos_;
     pos_ = target;
     marker_pending_ = false;
@@ -297,6 +306,8 @@ class Reader {
   ParsedGcode out_;
   Vec3 pos_ = Vec3::Zero();
   double e_ = 0.0;
+  double a_ = 0.0;      // rotary axis position, degrees
+  bool has_a_ = false;  // an A word was read: a_deg is kept parallel to the moves
   double feed_ = 0.0;
   double scale_ = 1.0;
   double width_ = 0.0;
