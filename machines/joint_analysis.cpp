@@ -88,12 +88,17 @@ Eigen::Isometry3d flange_pose(const RobotCell& cell, const Vec3& origin,
 }
 
 JointReport analyse_joints(const ArmModel& arm, const RobotCell& cell,
-                           const std::vector<slicer::PosePoint>& points, bool keep_solutions) {
+                           const std::vector<slicer::PosePoint>& points, bool keep_solutions,
+                           std::size_t max_problems) {
   JointReport out;
   out.poses = points.size();
   std::optional<Joints> seed;
   bool first_range = true;
   for (std::size_t i = 0; i < points.size(); ++i) {
+    if (out.unreachable + out.outside_limits >= max_problems) {
+      out.unchecked = points.size() - i;
+      break;
+    }
     const auto& p = points[i];
     const Eigen::Isometry3d target = flange_pose(cell, p.workpiece_origin_mm, p.workpiece_wxyz);
     const double reach = (wrist_centre(arm, target) - arm.shoulder_mm).norm();

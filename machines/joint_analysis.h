@@ -24,6 +24,7 @@ struct JointReport {
   std::string first_unreachable_what;  // "wrist 851.2 mm from the shoulder > reach 820 mm"
   std::string first_outside_what;      // "A7 = 181.2 deg, limit +-175 deg"
   std::vector<Joints> solutions;       // per pose (only when asked for)
+  std::size_t unchecked = 0;           // poses left after max_problems problems
 
   bool ok() const { return unreachable == 0 && outside_limits == 0; }
 };
@@ -32,9 +33,10 @@ struct JointReport {
 Eigen::Isometry3d flange_pose(const RobotCell& cell, const Vec3& workpiece_origin_mm,
                               const Eigen::Vector4d& workpiece_wxyz);
 
-// Solves every point of `points` in order, each seeded by the previous solution.
+// Solves every point of `points` in order, each seeded by the previous solution; stops after
+// `max_problems` unreachable or out-of-limit poses (bounding the work on a hopeless program).
 JointReport analyse_joints(const ArmModel& arm, const RobotCell& cell,
                            const std::vector<slicer::PosePoint>& points,
-                           bool keep_solutions = false);
+                           bool keep_solutions = false, std::size_t max_problems = 1000);
 
 }  // namespace strand::machines

@@ -240,12 +240,7 @@ class Reader {
         moved = true;
       }
     }
-    if (auto a = w.get('A')) {  // rotary axis, degrees; earlier moves were at the old A
-      if (!has_a_) out_.a_deg.assign(out_.program.moves.size(), a_);
-      has_a_ = true;
-      a_ = relative_ ? a_ + *a : *a;
-      moved = true;
-    }
+    moved = rotary(w) || moved;
     double de = 0.0;
     if (auto e = w.get('E')) {
       de = relative_e_ ? *e : *e - e_;
@@ -275,6 +270,17 @@ class Reader {
     if (out_.program.moves.size() == 1) out_.program.start_mm = pos_;
     pos_ = target;
     marker_pending_ = false;
+  }
+
+  // Reads an A word (rotary axis, degrees); true when there is one. Moves before the first
+  // A word were at the old A.
+  bool rotary(const Words& w) {
+    const auto a = w.get('A');
+    if (!a) return false;
+    if (!has_a_) out_.a_deg.assign(out_.program.moves.size(), a_);
+    has_a_ = true;
+    a_ = relative_ ? a_ + *a : *a;
+    return true;
   }
 
   void arc(Move& mv, int code, const Words& w, int n) {

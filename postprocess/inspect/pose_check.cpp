@@ -177,7 +177,8 @@ nlohmann::json joints_json(const machines::JointReport& j) {
           {"unreachable", j.unreachable},
           {"first_unreachable", j.first_unreachable_what},
           {"outside_limits", j.outside_limits},
-          {"first_outside", j.first_outside_what}};
+          {"first_outside", j.first_outside_what},
+          {"unchecked", j.unchecked}};
 }
 
 constexpr std::size_t kTextListed = 20;
@@ -191,6 +192,25 @@ void list_text(const char* title, const char* at, const PoseFindings& f, std::st
   }
   if (f.total > kTextListed)
     out += "  ... and " + std::to_string(f.total - kTextListed) + " more\n";
+}
+
+std::string joints_text(const machines::JointReport& j) {
+  std::string out = "joints (" + std::to_string(j.poses) + " poses solved along the path): ";
+  for (int i = 0; i < 7; ++i) {
+    out += std::string(i ? ", " : "") + "A" + std::to_string(i + 1) + " " +
+           fmt_fixed(slicer::rad_to_deg(j.min_rad[i]), 1) + ".." +
+           fmt_fixed(slicer::rad_to_deg(j.max_rad[i]), 1);
+  }
+  out += " deg; wrist up to " + fmt_fixed(j.max_reach_mm, 1) + " mm from the shoulder\n";
+  if (j.unreachable)
+    out += "  unreachable poses: " + std::to_string(j.unreachable) + ", first row " +
+           std::to_string(*j.first_unreachable) + ": " + j.first_unreachable_what + "\n";
+  if (j.outside_limits)
+    out += "  poses outside the joint limits: " + std::to_string(j.outside_limits) +
+           ", first row " + std::to_string(*j.first_outside) + ": " + j.first_outside_what + "\n";
+  if (j.unchecked)
+    out += "  " + std::to_string(j.unchecked) + " poses not solved after that many problems\n";
+  return out;
 }
 
 }  // namespace
@@ -254,22 +274,7 @@ std::string to_text(const PoseCheckReport& r) {
   list_text("speed deviations", at, r.speed, out);
   list_text("moves outside the machine's envelope", at, r.outside, out);
   list_text("problems in the file", at, r.parse, out);
-  if (r.joints_checked) {
-    const auto& j = r.joints;
-    out += "joints (" + std::to_string(j.poses) + " poses solved along the path): ";
-    for (int i = 0; i < 7; ++i) {
-      out += std::string(i ? ", " : "") + "A" + std::to_string(i + 1) + " " +
-             fmt_fixed(slicer::rad_to_deg(j.min_rad[i]), 1) + ".." +
-             fmt_fixed(slicer::rad_to_deg(j.max_rad[i]), 1);
-    }
-    out += " deg; wrist up to " + fmt_fixed(j.max_reach_mm, 1) + " mm from the shoulder\n";
-    if (j.unreachable)
-      out += "  unreachable poses: " + std::to_string(j.unreachable) + ", first row " +
-             std::to_string(*j.first_unreachable) + ": " + j.first_unreachable_what + "\n";
-    if (j.outside_limits)
-      out += "  poses outside the joint limits: " + std::to_string(j.outside_limits) +
-             ", first row " + std::to_string(*j.first_outside) + ": " + j.first_outside_what + "\n";
-  }
+  if (r.joints_checked) out += joints_text(r.joints);
   out += r.ok() ? "check: OK\n" : "check: FAILED\n";
   return out;
 }

@@ -7,23 +7,12 @@
 
 #include "machines/gcode_format.h"
 #include "postprocess/plan/cylinder_placement.h"
+#include "postprocess/plan/report.h"
 #include "slicer/units.h"
 
 namespace strand::post {
 
 namespace {
-
-double round_to(double v, int decimals) {
-  const double s = std::pow(10.0, decimals);
-  return std::round(v * s) / s;
-}
-
-std::string clock(double s) {
-  const long total = std::lround(s);
-  std::ostringstream o;
-  o << total / 3600 << "h " << (total / 60) % 60 << "m " << total % 60 << "s";
-  return o.str();
-}
 
 struct Sums {
   double deposit_mm = 0.0, travel_mm = 0.0, time_s = 0.0, volume_mm3 = 0.0;
@@ -149,7 +138,7 @@ std::string pose_summary(const nlohmann::json& r) {
   }
   o << "\n  deposited      " << fmt_fixed(tot.at("deposit_length_mm").get<double>() / 1000.0, 3)
     << " m on the surface, " << tot.at("poses").get<int>() << " poses\n";
-  o << "  time           " << clock(tot.at("time_s").get<double>()) << "\n";
+  o << "  time           " << clock_text(tot.at("time_s").get<double>()) << "\n";
   if (r.contains("ink"))
     o << "  ink            " << r.at("ink").at("text").get<std::string>() << "\n";
   if (r.contains("programs"))

@@ -122,7 +122,7 @@ nlohmann::json joints_json(const machines::JointReport& j, const machines::ArmMo
 nlohmann::json check_robot(const slicer::PoseProgram& p, const MachineProfile& m) {
   check_turning(p, m);
   const machines::ArmModel arm = machines::lbr_iiwa_14_r820(m.robot);
-  const machines::JointReport j = machines::analyse_joints(arm, m.robot, p.points);
+  const machines::JointReport j = machines::analyse_joints(arm, m.robot, p.points, false, 1);
   if (j.first_unreachable) {
     throw InputError("substrate: pose " + std::to_string(*j.first_unreachable) +
                      " is out of the robot's reach (" + j.first_unreachable_what +

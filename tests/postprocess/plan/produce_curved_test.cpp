@@ -230,5 +230,79 @@ TEST(ProduceCurved, ChordsStayWithinTheToleranceOnTheSurface) {
   }
 }
 
+// Turning span of each layer's deposits, rad.
+std::vector<double> layer_spans(const slicer::PoseProgram& p) {
+  std::vector<double> lo(p.layers.size(), 1e9), hi(p.layers.size(), -1e9);
+  for (const auto& pt : p.points) {
+    if (!pt.extrude) continue;
+    lo[pt.layer] = std::min(lo[pt.layer], pt.turn_rad);
+    hi[pt.layer] = std::max(hi[pt.layer], pt.turn_rad);
+  }
+  std::vector<double> span;
+  for (std::size_t k = 0; k < lo.size(); ++k) span.push_back(hi[k] - lo[k]);
+  return span;
+}
+
+TEST(ProduceCurved, DepositionArcLengthKeepsThePitchOnOuterLayers) {
+  Job j = sample_job("missing-rib-cylinder.json");
+  j.machine = machines::load_profile("marlin-rotary-a");
+  j.substrate.radius_mm = 25.0;
+  const double h = j.toolpath.layers.front().height_mm, r = 25.0;
+  const auto surface = produce_curved(j.toolpath, j.substrate, j.machine, 0.01, "s.gcode").program;
+  j.substrate.arc_length_at = slicer::ArcLengthAt::Deposition;
+  const auto deposition =
+      produce_curved(j.toolpath, j.substrate, j.machine, 0.01, "d.gcode").program;
+  const auto s = layer_spans(surface), d = layer_spans(deposition);
+  for (std::size_t k = 0; k < 3; ++k) {
+    // Surface: every layer spans the same angle; its length grows by the stretch.
+    EXPECT_NEAR(s[k], s[0], 1e-9);
+    EXPECT_NEAR(surface.layers[k].u_stretch, (r + (k + 1) * h) / r, 1e-12);
+    // Deposition: the span at each layer's bead centre is the pattern's width.
+    EXPECT_NEAR(d[k] * (r + (k + 0.5) * h), s[0] * r, 1e-6);
+    EXPECT_NEAR(deposition.layers[k].u_stretch, (r + (k + 1) * h) / (r + (k + 0.5) * h), 1e-12);
+  }
+}
+
+// One layer around the whole cylinder: a strand along u over exactly one period, as a
+// periodic design hands it over (x beyond the period wraps).
+slicer::Toolpath ring(double period_mm, double v_mm) {
+  slicer::Toolpath t;
+  t.generator = "ring";
+  t.parameters = {{"speed", 300.0}};
+  slicer::Stroke s;
+  s.start_mm = slicer::Vec2(-period_mm / 2, v_mm);
+  s.segments = {slicer::line_to(slicer::Vec2(0.1, v_mm + 2.0), slicer::Feature::Infill),
+                slicer::line_to(slicer::Vec2(period_mm / 2, v_mm), slicer::Feature::Infill)};
+  s.width_mm = 0.6;
+  s.height_mm = 0.5;
+  t.layers.push_back({0.5, 0.5, {s}});
+  return t;
+}
+
+TEST(ProduceCurved, FullWrapClosesAcrossTheSeam) {
+  const slicer::SubstrateSpec s{"cylinder", 15.0, 40.0, slicer::Wrap::Full,
+                                slicer::ArcLengthAt::Surface};
+  const auto p = produce_curved(ring(slicer::kTwoPi * 15.0, 0.0), s,
+                                machines::load_profile("marlin-rotary-a"), 0.01, "w.gcode")
+                     .program;
+  const slicer::PosePoint* first = nullptr;
+  const slicer::PosePoint* last = nullptr;
+  for (std::size_t i = 1; i < p.points.size(); ++i) {
+    if (p.points[i].extrude) last = &p.points[i], first = first ? first : &p.points[i - 1];
+  }
+  ASSERT_TRUE(first && last);
+  EXPECT_LT((first->contact_mm - last->contact_mm).norm(), 1e-6)
+      << "the strand meets itself on the cylinder";
+  EXPECT_NEAR(last->turn_rad - first->turn_rad, slicer::kTwoPi, 1e-9);
+  // The robot cell cannot turn the cylinder a full circle: refused, named.
+  try {
+    produce_curved(ring(slicer::kTwoPi * 15.0, 0.0), s,
+                   machines::load_profile("kuka-iiwa14-wasp-cylinder"), 0.01, "w.csv");
+    ADD_FAILURE() << "a full turn on A7";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("A7 allows 340.0 deg"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace strand::post
