@@ -4,6 +4,7 @@
 #include "machines/profile.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/params.h"
 
 namespace strand::cli {
@@ -39,21 +40,22 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   }
   if (!problems.empty()) throw InputError(problems);
   JobSpec s;
-  const std::string name = j.value("generator", std::string());
+  const std::string name = slicer::get_text(j, "generator", where, "");
   s.generator = patterns::find_generator(name);
   if (!s.generator) {
     throw InputError(where + ".generator = " + name + ": must be one of " + generator_names());
   }
-  s.settings.machine = j.value("machine", s.settings.machine);
-  s.settings.output = j.value("output", std::string());
-  s.settings.report = j.value("report", std::string());
-  s.settings.arc_tolerance_mm = j.value("arc-tolerance", s.settings.arc_tolerance_mm);
-  if (j.contains("viewer-e") && !j.at("viewer-e").is_boolean()) {
-    throw InputError(where + ".viewer-e = " + j.at("viewer-e").dump() + ": must be true or false");
-  }
-  s.settings.viewer_e = j.value("viewer-e", false);
+  s.settings.machine = slicer::get_text(j, "machine", where, s.settings.machine);
+  s.settings.output = slicer::get_text(j, "output", where, "");
+  s.settings.report = slicer::get_text(j, "report", where, "");
+  s.settings.arc_tolerance_mm =
+      slicer::get_number(j, "arc-tolerance", where, s.settings.arc_tolerance_mm);
+  s.settings.viewer_e = slicer::get_bool(j, "viewer-e", where, false);
   s.params = j.value("params", nlohmann::json::object());
-  s.description = j.value("description", std::string());
+  if (!s.params.is_object()) {
+    throw InputError(where + ".params: must be an object of parameter values, e.g. {\"nozzle\": 0.84}");
+  }
+  s.description = slicer::get_text(j, "description", where, "");
   return s;
 }
 
@@ -63,9 +65,13 @@ post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohm
     throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
                      ": must be in (0, 1] (mm)");
   }
+  const machines::MachineProfile machine = machines::load_profile(s.machine);
+  if (machine.plotter.enabled) {
+    throw InputError("machine = " + s.machine + ": a pen plotter; " + generator.name +
+                     " needs a printer profile (strand machines lists them)");
+  }
   const nlohmann::json values = slicer::resolve_params(generator.table(), params);
   const slicer::Toolpath t = generator.generate(values);
-  const machines::MachineProfile machine = machines::load_profile(s.machine);
   return post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm),
                        job_output_path(generator, s), s.viewer_e);
 }
@@ -84,12 +90,12 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& s) {
   post::Produced produced = produce_job(generator, params, s);
-  const std::string report = produced.report.dump(2) + "\n";
-  slicer::write_file_atomic(job_output_path(generator, s), produced.gcode);
-  if (s.viewer_e) {
-    slicer::write_file_atomic(viewer_output_path(job_output_path(generator, s)), produced.viewer_gcode);
-  }
-  if (!s.report.empty()) slicer::write_file_atomic(s.report, report);
+  slicer::OutputFiles out;
+  for (const std::string& input : s.inputs) out.protect_input(input);
+  out.stage(job_output_path(generator, s), produced.gcode);
+  if (s.viewer_e) out.stage(viewer_output_path(job_output_path(generator, s)), produced.viewer_gcode);
+  if (!s.report.empty()) out.stage(s.report, produced.report.dump(2) + "\n");
+  out.commit();
   return produced;
 }
 

@@ -96,7 +96,8 @@ void add_preview_command(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand("preview", "draw any G-code file as .png, .svg, .html or .glb (by -o's extension)");
   sub->add_option("gcode", a->input, "G-code file")->required();
   sub->add_option("-o,--output", a->output, "preview file: .png, .svg, .html or .glb")->required();
-  sub->add_option("--layer", a->layer, "only this layer (0-based, as ;LAYER:n; png/svg; default all)");
+  sub->add_option("--layer", a->layer, "only this layer (0-based, as ;LAYER:n; png/svg; default all)")
+      ->check(CLI::Range(0, 100000000));
   sub->add_option("--colour", a->colour, "colour by feature or layer (png/svg; default feature)");
   sub->add_option("--view", a->view, "top, iso or both side by side (png/svg; default both)");
   sub->add_flag("--travel", a->travel, "also draw travel moves (png/svg)");

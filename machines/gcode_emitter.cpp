@@ -60,13 +60,9 @@ class Writer {
 
  private:
   // "; text" or, on GRBL, "(text)" (GRBL comments may not nest parentheses).
-  std::string comment(std::string text) const {
-    if (m_.firmware != Firmware::Grbl) return text.empty() ? ";\n" : "; " + text + "\n";
-    for (char& c : text) {
-      if (c == '(') c = '[';
-      if (c == ')') c = ']';
-    }
-    return "(" + text + ")\n";
+  std::string comment(const std::string& text) const {
+    if (m_.firmware != Firmware::Grbl) return text.empty() ? ";\n" : "; " + comment_text(text) + "\n";
+    return "(" + comment_text(text, false) + ")\n";
   }
 
   std::string code(const std::string& words, const std::string& note) const {
