@@ -94,7 +94,7 @@ post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann:
   for (const std::string& input : s.inputs) out.protect_input(input);
   out.stage(job_output_path(generator, s), produced.gcode);
   if (s.viewer_e) out.stage(viewer_output_path(job_output_path(generator, s)), produced.viewer_gcode);
-  if (!s.report.empty()) out.stage(s.report, produced.report.dump(2) + "\n");
+  if (!s.report.empty()) out.stage(s.report, slicer::dump_json(produced.report) + "\n");
   out.commit();
   return produced;
 }

@@ -11,6 +11,8 @@
 #include "cli/commands.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
+#include "slicer/params.h"
 #include "slicer/tolerances.h"
 
 namespace strand::cli {
@@ -64,8 +66,9 @@ int run(const PreviewArgs& a) {
   if (ext != ".png" && ext != ".svg" && ext != ".html" && ext != ".glb") {
     throw InputError("--output = " + a.output + ": extension must be .png, .svg, .html or .glb");
   }
-  if (!(a.arc_tolerance_mm > 0.0 && a.arc_tolerance_mm <= 1.0)) {
-    throw InputError("--arc-tolerance: must be in (0, 1] (mm)");
+  if (!(a.arc_tolerance_mm >= post::kMinFlattenToleranceMm && a.arc_tolerance_mm <= 1.0)) {
+    throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) +
+                     ": must be in [0.001, 1] (mm)");
   }
   const std::string gcode = slicer::read_file(a.input);
   const post::ParsedGcode parsed = post::parse_gcode(gcode);

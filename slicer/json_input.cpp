@@ -84,4 +84,8 @@ bool get_bool(const nlohmann::json& j, const std::string& key, const std::string
   return v.get<bool>();
 }
 
+std::string dump_json(const nlohmann::json& j, int indent) {
+  return j.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
 }  // namespace strand::slicer

@@ -25,4 +25,8 @@ double get_number(const nlohmann::json& j, const std::string& key, const std::st
 bool get_bool(const nlohmann::json& j, const std::string& key, const std::string& where,
               bool fallback);
 
+// JSON text for files and stdout; bytes that are not UTF-8 (copied from a G-code comment or a
+// command-line argument) are replaced instead of failing the dump.
+std::string dump_json(const nlohmann::json& j, int indent = 2);
+
 }  // namespace strand::slicer
