@@ -1,7 +1,12 @@
 // Job parsing and the generate-plan-emit-write chain, shared by every command that runs jobs.
 #include "cli/job_runner.h"
 
+#include <stdexcept>
+
+#include "machines/gcode_format.h"
 #include "machines/profile.h"
+#include "postprocess/inspect/check.h"
+#include "postprocess/inspect/crossings.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -25,6 +30,29 @@ std::string generator_names() {
   std::string names;
   for (const auto& g : patterns::generators()) names += (names.empty() ? "" : ", ") + g.name;
   return names;
+}
+
+// Chords coarser than the default can cut into a neighbouring pass (a chord lies inside its
+// arc by up to the tolerance): the planned program is searched for crossings and refused.
+void refuse_crossing_chords(const slicer::MotionProgram& program, const JobSettings& s) {
+  const post::ContactReport contacts =
+      post::find_contacts(program, slicer::kDefaultArcToleranceMm, slicer::kGcodeResolutionMm);
+  if (contacts.crossings.empty()) return;
+  const slicer::Vec2 at = contacts.crossings.front().at_mm;
+  throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) + ": the chords cross the strand at " +
+                   std::to_string(contacts.crossings.size()) + " place(s), first near (" +
+                   machines::fmt_xyz(at.x()) + ", " + machines::fmt_xyz(at.y()) +
+                   ") mm; use a smaller tolerance (the default " +
+                   slicer::short_number(slicer::kDefaultArcToleranceMm) + " mm keeps every pass apart)");
+}
+
+// Debug builds: every file a generator writes must pass `strand check` on its machine.
+[[maybe_unused]] void assert_passes_check(const std::string& gcode, const machines::MachineProfile& m) {
+  post::CheckOptions o;
+  o.machine = &m;
+  o.touch_mm = slicer::kGcodeResolutionMm;
+  const post::CheckReport report = post::check_gcode(gcode, o);
+  if (!report.ok()) throw std::logic_error("generated G-code fails strand check:\n" + post::to_text(report));
 }
 
 }  // namespace
@@ -72,8 +100,13 @@ post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohm
   }
   const nlohmann::json values = slicer::resolve_params(generator.table(), params);
   const slicer::Toolpath t = generator.generate(values);
-  return post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm),
-                       job_output_path(generator, s), s.viewer_e);
+  post::Produced produced = post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm),
+                                          job_output_path(generator, s), s.viewer_e);
+  if (s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm) refuse_crossing_chords(produced.program, s);
+#ifndef NDEBUG
+  assert_passes_check(produced.gcode, machine);
+#endif
+  return produced;
 }
 
 std::string viewer_output_path(const std::string& out) {

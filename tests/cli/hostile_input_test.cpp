@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 
@@ -168,6 +169,41 @@ TEST(Hostile, PreviewLayerMinusOneIsOutOfRange) {
   write(dir + "/x.gcode", ";LAYER:0\nG0 X0 Y0 Z0.5\nG1 X10 Y0 E1\n");
   expect_input_error(run_strand("preview x.gcode -o x.png --layer -1", dir), "--layer");
   EXPECT_FALSE(exists(dir + "/x.png"));
+}
+
+}  // namespace
+}  // namespace strand::testing
+
+namespace strand::testing {
+namespace {
+
+TEST(Hostile, ArcsWhoseRoundedEndsMeetAreNotWrittenAsFullCircles) {
+  const auto dir = fresh_dir("hostile-arc");
+  const auto r = run_strand(
+      "hexachiral --nozzle 0.87 --cell 14.2 --rows 3 --cols 5 --height 4.78 --machine marlin-xyz-200 "
+      "-o h.gcode",
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto check = run_strand("check h.gcode --machine marlin-xyz-200", dir);
+  EXPECT_EQ(check.exit_code, 0) << check.out;
+}
+
+TEST(Hostile, AnArcToleranceThatMakesChordsCrossIsRefused) {
+  const auto dir = fresh_dir("hostile-arc-tol");
+  const auto r = run_strand(
+      "tetrachiral --nozzle 0.451 --cell 9.11 --rows 7 --cols 5 --node-core 3.46 --layers 4 "
+      "--layer-height 0.335 --arc-tolerance 0.499 -o t.gcode",
+      dir);
+  expect_input_error(r, "arc-tolerance = 0.499: the chords cross the strand");
+  EXPECT_FALSE(exists(dir + "/t.gcode"));
+}
+
+TEST(Hostile, CheckJsonOfANonUtf8FileIsValidJson) {
+  const auto dir = fresh_dir("hostile-utf8");
+  std::ofstream(dir + "/x.gcode", std::ios::binary) << "G1 X\xb9\nG1 X10 Y0\n";
+  const auto r = run_strand("check x.gcode --json", dir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NO_THROW((void)nlohmann::json::parse(r.out)) << r.out;
 }
 
 }  // namespace
