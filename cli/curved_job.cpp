@@ -4,6 +4,7 @@
 #include "machines/profile.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/params.h"
 #include "slicer/substrate_params.h"
 #include "slicer/units.h"
@@ -55,9 +56,11 @@ post::CurvedProduced produce_curved_job(const patterns::GeneratorSpec& g,
 post::Produced run_curved_job(const patterns::GeneratorSpec& g, const nlohmann::json& params,
                               const JobSettings& s) {
   post::CurvedProduced c = produce_curved_job(g, params, s);
-  auto files = c.files;
-  if (!s.report.empty()) files.emplace_back(s.report, c.report.dump(2) + "\n");
-  slicer::write_files_atomic(files);
+  slicer::OutputFiles files;
+  for (const std::string& input : s.inputs) files.protect_input(input);
+  for (const auto& [path, content] : c.files) files.stage(path, content);
+  if (!s.report.empty()) files.stage(s.report, slicer::dump_json(c.report) + "\n");
+  files.commit();
   post::Produced out;
   out.report = std::move(c.report);
   out.summary = std::move(c.summary);
