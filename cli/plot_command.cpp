@@ -28,6 +28,8 @@ const slicer::ParamTable& plot_table() {
           {"pens", ParamType::Text, "", "pen rules KEY=PEN,... (KEY: group id, Inkscape layer label or colour); default: groups m1..m4 -> pens 1..4, else pen 1", std::nullopt, false, std::nullopt, false, ""},
           {"fill", ParamType::Text, "", "what a filled shape gets: its outline plus hatch lines or concentric rings, its outline only, or nothing", std::nullopt, false, std::nullopt, false, "hatch", "", {"hatch", "concentric", "outline", "none"}},
           {"hatch-angle", ParamType::NumberList, "deg", "angle of the hatch lines, one value or one per pen (pen 1 first, the last repeats)", -180.0, false, 180.0, false, nlohmann::json::array({45})},
+          {"text", ParamType::Text, "", "how <text> is drawn: single-stroke Hershey font, the outline font the drawing names (fontconfig), or not at all", std::nullopt, false, std::nullopt, false, "hershey", "", {"hershey", "outline", "none"}},
+          {"font", ParamType::Text, "", "hershey:NAME for --text hershey (futural, rowmans, scripts, timesr, ...); an installed family for --text outline (replaces the drawing's)", std::nullopt, false, std::nullopt, false, nullptr, "hershey:futural, or the drawing's own fonts"},
           {"hatch-spacing", ParamType::NumberList, "mm", "distance between hatch lines or concentric rings, one value or one per pen", 0.0, true, std::nullopt, false, nullptr, "the pen width"},
       }};
   return kTable;
@@ -55,6 +57,20 @@ post::PlotOptions plot_options(const nlohmann::json& v, const PlotArgs& a) {
   return o;
 }
 
+slicer::TextOptions text_options(const nlohmann::json& v) {
+  slicer::TextOptions t;
+  t.mode = slicer::text_mode_from_string(v.at("text").get<std::string>());
+  if (v.contains("font")) t.font = v.at("font").get<std::string>();
+  const bool hershey = !slicer::hershey_name(t.font).empty();
+  if (t.mode == slicer::TextMode::Hershey && !t.font.empty() && !hershey) {
+    throw InputError("plot.font = " + t.font + ": --text hershey needs hershey:NAME (or use --text outline for installed fonts)");
+  }
+  if (t.mode == slicer::TextMode::Outline && hershey) {
+    throw InputError("plot.font = " + t.font + ": a Hershey font is single-stroke; use --text hershey with it");
+  }
+  return t;
+}
+
 int run_plot(const PlotArgs& a) {
   PlotRequest r;
   r.parameters = slicer::resolve_params(plot_table(), given_params(plot_table(), a.flags));
@@ -62,6 +78,7 @@ int run_plot(const PlotArgs& a) {
   r.input = a.svg;
   const machines::MachineProfile m = machines::load_profile(a.machine);
   r.drawing = slicer::import_svg(slicer::read_file(a.svg), a.svg);
+  draw_text_into(r, text_options(r.parameters));
   PlotResult p = plot_drawing(r, m);
   p.report["gcode"] = a.output;
   std::string erase;

@@ -29,6 +29,18 @@ std::string row(const std::string& label, const std::string& value) {
 
 }  // namespace
 
+void draw_text_into(PlotRequest& r, const slicer::TextOptions& o) {
+  auto& d = r.drawing;
+  if (d.texts.empty()) return;
+  if (o.mode == slicer::TextMode::None) {
+    d.skipped.insert(d.skipped.begin(), "text (" + std::to_string(d.texts.size()) + ")");
+    return;
+  }
+  slicer::TextDrawing t = slicer::layout_text(d.texts, o);
+  for (auto& s : t.shapes) d.shapes.push_back(std::move(s));
+  r.notes.emplace_back("text", t.summary());
+}
+
 PlotResult plot_drawing(const PlotRequest& r, const machines::MachineProfile& m) {
   const post::PlotOptions& o = r.options;
   PlotResult out;

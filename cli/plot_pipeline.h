@@ -11,6 +11,7 @@
 #include "machines/profile.h"
 #include "postprocess/plot/plot_layout.h"
 #include "slicer/svg_import.h"
+#include "slicer/text_layout.h"
 #include "slicer/toolpath.h"
 
 namespace strand::cli {
@@ -30,6 +31,10 @@ struct PlotResult {
   nlohmann::json report;
   std::string summary;            // what the command prints
 };
+
+// Turns the drawing's texts into shapes with `o` (or lists them as skipped for
+// TextMode::None) and adds the "text" note. Throws InputError for a missing font.
+void draw_text_into(PlotRequest& request, const slicer::TextOptions& o);
 
 // Throws InputError (nothing drawable, out of reach, bad pens, tolerance, fill budget).
 PlotResult plot_drawing(const PlotRequest& request, const machines::MachineProfile& m);
