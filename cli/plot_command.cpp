@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/param_flags.h"
 #include "cli/plot_pipeline.h"
+#include "cli/trace_input.h"
 #include "machines/erase_pattern.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -37,8 +38,8 @@ const slicer::ParamTable& plot_table() {
 
 struct PlotArgs {
   std::string svg, machine = "xy-plotter-servo", output, report, erase;
-  bool mirror = false, no_order = false;
-  ParamFlags flags;
+  bool mirror = false, no_order = false, trace = false;
+  ParamFlags flags, trace_flags;
 };
 
 post::PlotOptions plot_options(const nlohmann::json& v, const PlotArgs& a) {
@@ -71,14 +72,36 @@ slicer::TextOptions text_options(const nlohmann::json& v) {
   return t;
 }
 
+// The image traced into pen layers; unless the user chose hatch angles, level k hatches at
+// 45 + 180 (k - 1) / N degrees so that darker areas, covered by more levels, cross-hatch.
+void read_traced(const PlotArgs& a, PlotRequest& r) {
+  const nlohmann::json tv = slicer::resolve_params(trace_table(), given_params(trace_table(), a.trace_flags));
+  const TracedImage t = trace_file(a.svg, trace_options(tv));
+  if (t.layers.empty()) throw InputError("trace: " + a.svg + " has no pixel darker than the threshold (try --threshold)");
+  r.drawing = drawing_of(t.layers, t.trace.size_mm);
+  r.parameters["trace"] = tv;
+  r.notes.emplace_back("traced", t.summary);
+  if (a.flags.options.at("hatch-angle")->count() == 0) {
+    r.options.hatch_angle_deg.clear();
+    const int n = static_cast<int>(t.trace.levels.size());
+    for (int k = 0; k < n; ++k) r.options.hatch_angle_deg.push_back(45.0 + 180.0 * k / n);
+  }
+}
+
 int run_plot(const PlotArgs& a) {
   PlotRequest r;
   r.parameters = slicer::resolve_params(plot_table(), given_params(plot_table(), a.flags));
   r.options = plot_options(r.parameters, a);
   r.input = a.svg;
   const machines::MachineProfile m = machines::load_profile(a.machine);
-  r.drawing = slicer::import_svg(slicer::read_file(a.svg), a.svg);
-  draw_text_into(r, text_options(r.parameters));
+  if (a.trace) {
+    read_traced(a, r);
+  } else {
+    const nlohmann::json trace_given = given_params(trace_table(), a.trace_flags);
+    if (!trace_given.empty()) throw InputError("trace." + trace_given.begin().key() + ": applies to images; add --trace");
+    r.drawing = slicer::import_svg(slicer::read_file(a.svg), a.svg);
+    draw_text_into(r, text_options(r.parameters));
+  }
   PlotResult p = plot_drawing(r, m);
   p.report["gcode"] = a.output;
   std::string erase;
@@ -98,14 +121,16 @@ int run_plot(const PlotArgs& a) {
 void add_plot_command(CLI::App& app, Action& action) {
   auto a = std::make_shared<PlotArgs>();
   CLI::App* sub = app.add_subcommand("plot", "SVG drawing -> pen plotter G-code");
-  sub->add_option("drawing", a->svg, "SVG file")->required();
+  sub->add_option("drawing", a->svg, "SVG file (an image with --trace)")->required();
   sub->add_option("--machine", a->machine, "plotter profile name or path to a .json profile (default xy-plotter-servo)");
   sub->add_option("-o,--output", a->output, "G-code file to write")->required();
   sub->add_option("--report", a->report, "write a JSON report here");
   sub->add_option("--erase", a->erase, "also write the erase sweeps over the drawing here");
   sub->add_flag("--mirror", a->mirror, "mirror left-right (drawing on glass)");
   sub->add_flag("--no-order", a->no_order, "keep the SVG's stroke order (no merging or reordering)");
+  sub->add_flag("--trace", a->trace, "the drawing is an image (PNG, JPEG, PBM/PGM/PPM, ...): trace it with potrace, level k on pen k");
   add_param_flags(sub, plot_table(), a->flags);
+  add_param_flags(sub, trace_table(), a->trace_flags);
   sub->callback([&action, a] { action = [a] { return run_plot(*a); }; });
 }
 

@@ -58,21 +58,9 @@ std::string path_data(const std::vector<SubPath>& paths) {
   return d;
 }
 
-std::string write_svg(const std::vector<SvgLayer>& layers, double margin_mm, double stroke_width_mm) {
-  Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
-  for (const auto& l : layers) {
-    for (const auto& s : l.shapes) {
-      for (const auto& p : s.paths) {
-        for (const auto& q : flatten(p, kBoundsToleranceMm)) {
-          lo = lo.cwiseMin(q);
-          hi = hi.cwiseMax(q);
-        }
-      }
-    }
-  }
-  if (!(lo.x() <= hi.x())) lo = hi = Vec2::Zero();
-  lo -= Vec2(margin_mm, margin_mm);
-  hi += Vec2(margin_mm, margin_mm);
+namespace {
+
+std::string document(const std::vector<SvgLayer>& layers, const Vec2& lo, const Vec2& hi, double stroke_width_mm) {
   const Vec2 size = hi - lo;
   std::string out = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out += "<svg xmlns=\"http://www.w3.org/2000/svg\" "
@@ -90,6 +78,29 @@ std::string write_svg(const std::vector<SvgLayer>& layers, double margin_mm, dou
     out += "  </g>\n";
   }
   return out + "</svg>\n";
+}
+
+}  // namespace
+
+std::string write_svg_page(const std::vector<SvgLayer>& layers, const Vec2& page_mm, double stroke_width_mm) {
+  return document(layers, Vec2::Zero(), page_mm, stroke_width_mm);
+}
+
+std::string write_svg(const std::vector<SvgLayer>& layers, double margin_mm, double stroke_width_mm) {
+  Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+  for (const auto& l : layers) {
+    for (const auto& s : l.shapes) {
+      for (const auto& p : s.paths) {
+        for (const auto& q : flatten(p, kBoundsToleranceMm)) {
+          lo = lo.cwiseMin(q);
+          hi = hi.cwiseMax(q);
+        }
+      }
+    }
+  }
+  if (!(lo.x() <= hi.x())) lo = hi = Vec2::Zero();
+  const Vec2 margin(margin_mm, margin_mm);
+  return document(layers, lo - margin, hi + margin, stroke_width_mm);
 }
 
 }  // namespace strand::slicer
