@@ -16,6 +16,7 @@ void add_machines_command(CLI::App& app, Action& action);
 void add_plot_command(CLI::App& app, Action& action);
 void add_text_command(CLI::App& app, Action& action);
 void add_trace_command(CLI::App& app, Action& action);
+void add_send_command(CLI::App& app, Action& action);
 void add_check_command(CLI::App& app, Action& action);
 void add_flow_command(CLI::App& app, Action& action);
 void add_sweep_command(CLI::App& app, Action& action);

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   strand::cli::add_plot_command(app, action);
   strand::cli::add_text_command(app, action);
   strand::cli::add_trace_command(app, action);
+  strand::cli::add_send_command(app, action);
   strand::cli::add_check_command(app, action);
   strand::cli::add_flow_command(app, action);
   strand::cli::add_sweep_command(app, action);
