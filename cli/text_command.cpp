@@ -89,7 +89,7 @@ int run_text(const TextArgs& a) {
   std::string out, summary;
   if (svg) {
     out = slicer::write_svg({{"m1", "text", r.drawing.shapes}}, 0.1 * v.at("size").get<double>(), 0.3);
-    summary = "  " + r.notes.front().first + std::string(13, ' ') + r.notes.front().second + "\n";
+    summary = "  " + r.notes.front().first + std::string(11, ' ') + r.notes.front().second + "\n";
   } else {
     r.options.fill = post::fill_style_from_string(v.at("fill").get<std::string>());
     r.options.offset_mm = slicer::Vec2(v["offset"][0].get<double>(), v["offset"][1].get<double>());
