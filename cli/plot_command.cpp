@@ -10,6 +10,7 @@
 #include "machines/erase_pattern.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/params.h"
 #include "slicer/svg_import.h"
 
@@ -109,9 +110,12 @@ int run_plot(const PlotArgs& a) {
     const auto [lo, hi] = slicer::bounds(p.toolpath);
     erase = machines::emit_erase_gcode(m, lo, hi, {"Strand erase pattern for " + a.svg, ""});
   }
-  slicer::write_file_atomic(a.output, p.gcode);
-  if (!erase.empty()) slicer::write_file_atomic(a.erase, erase);
-  if (!a.report.empty()) slicer::write_file_atomic(a.report, p.report.dump(2) + "\n");
+  slicer::OutputFiles out;
+  out.protect_input(a.svg);
+  out.stage(a.output, p.gcode);
+  if (!erase.empty()) out.stage(a.erase, erase);
+  if (!a.report.empty()) out.stage(a.report, slicer::dump_json(p.report) + "\n");
+  out.commit();
   std::cout << "plot " << a.svg << " -> " << a.output << " (" << m.name << ")\n" << p.summary;
   return 0;
 }

@@ -9,6 +9,7 @@
 #include "cli/plot_pipeline.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/svg_export.h"
 #include "slicer/text_layout.h"
 
@@ -87,6 +88,7 @@ int run_text(const TextArgs& a) {
   draw_text_into(r, to);
   if (r.drawing.shapes.empty()) throw InputError("text: nothing to draw (the font has no glyph for any character)");
   std::string out, summary;
+  slicer::OutputFiles files;
   if (svg) {
     out = slicer::write_svg({{"m1", "text", r.drawing.shapes}}, 0.1 * v.at("size").get<double>(), 0.3);
     summary = "  " + r.notes.front().first + std::string(11, ' ') + r.notes.front().second + "\n";
@@ -98,9 +100,10 @@ int run_text(const TextArgs& a) {
     out = p.gcode;
     summary = p.summary;
     p.report["gcode"] = a.output;
-    if (!a.report.empty()) slicer::write_file_atomic(a.report, p.report.dump(2) + "\n");
+    if (!a.report.empty()) files.stage(a.report, slicer::dump_json(p.report) + "\n");
   }
-  slicer::write_file_atomic(a.output, out);
+  files.stage(a.output, out);
+  files.commit();
   std::cout << "text -> " << a.output << (gcode ? " (" + a.machine + ")" : "") << "\n" << summary;
   return 0;
 }

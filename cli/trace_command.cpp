@@ -25,7 +25,10 @@ int run_trace(const TraceArgs& a) {
   if (!svg) throw InputError("trace.output = " + a.output + ": must end in .svg (plot images with strand plot IMAGE --trace)");
   const TracedImage t = trace_file(a.image, trace_options(v));
   if (t.layers.empty()) throw InputError("trace: " + a.image + " has no pixel darker than the threshold (try --threshold)");
-  slicer::write_file_atomic(a.output, slicer::write_svg_page(t.layers, t.trace.size_mm, 0.3));
+  slicer::OutputFiles out;
+  out.protect_input(a.image);
+  out.stage(a.output, slicer::write_svg_page(t.layers, t.trace.size_mm, 0.3));
+  out.commit();
   std::cout << "trace " << a.image << " -> " << a.output << "\n"
             << "  size           " << machines::fmt_fixed(t.trace.size_mm.x(), 3) << " x "
             << machines::fmt_fixed(t.trace.size_mm.y(), 3) << " mm\n"
