@@ -60,7 +60,9 @@ TEST_P(SendUnderFaults, FirmwareExecutesExactlyTheFileInOrder) {
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_EQ(sim.executed(), texts(j.commands));
   EXPECT_EQ(sim.unrequested_duplicates(), 0);
-  if (c.faults.corrupt_at) EXPECT_GE(sim.resend_requests(), 1);
+  if (c.faults.corrupt_at) {
+    EXPECT_GE(sim.resend_requests(), 1);
+  }
   if (c.grbl) {
     EXPECT_LE(sim.max_buffered(), machines::kGrblBufferBytes);
     EXPECT_GT(sim.max_buffered(), 60u);  // more than one line in flight: character counting
