@@ -82,28 +82,34 @@ void FirmwareSim::on_line(const std::string& line) {
   max_buffered_ = std::max(max_buffered_, bytes);
 }
 
-// GRBL runs one queued line per loop turn (1 ms), so the buffer really fills up.
-void FirmwareSim::grbl_execute() {
-  if (grbl_queue_.empty() || halted_) return;
-  std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  const std::string line = grbl_queue_.front();
-  grbl_queue_.erase(grbl_queue_.begin());
+// Counts and records a command unless a fault strikes it: the port vanishes, or the
+// firmware answers `fatal` and halts. True when the command ran (an "ok" is due).
+bool FirmwareSim::run_command(const std::string& command, const std::string& fatal) {
   ++count_;
   if (count_ == f_.disconnect_at) {
     close(master_);
     master_ = -1;
     close(slave_);
     slave_ = -1;
-    return;
+    return false;
   }
   if (count_ == f_.error_at) {
     halted_ = true;
-    return reply("error:22");
+    reply(fatal);
+    return false;
   }
-  {
-    std::lock_guard<std::mutex> l(mu_);
-    executed_.push_back(line);
-  }
+  std::lock_guard<std::mutex> l(mu_);
+  executed_.push_back(command);
+  return true;
+}
+
+// GRBL runs one queued line per loop turn (1 ms), so the buffer really fills up.
+void FirmwareSim::grbl_execute() {
+  if (grbl_queue_.empty() || halted_) return;
+  std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  const std::string line = grbl_queue_.front();
+  grbl_queue_.erase(grbl_queue_.begin());
+  if (!run_command(line, "error:22")) return;
   if (count_ != f_.drop_ok_at) reply("ok");
 }
 
@@ -134,22 +140,7 @@ void FirmwareSim::marlin(const std::string& line) {
   }
   if (n != last_n_ + 1) return resend("Line Number is not Last Line Number+1");
   last_n_ = n;
-  ++count_;
-  if (count_ == f_.disconnect_at) {
-    close(master_);
-    master_ = -1;
-    close(slave_);
-    slave_ = -1;
-    return;
-  }
-  if (count_ == f_.error_at) {
-    halted_ = true;
-    return reply("Error:Printer halted. kill() called!");
-  }
-  {
-    std::lock_guard<std::mutex> l(mu_);
-    executed_.push_back(command);
-  }
+  if (!run_command(command, "Error:Printer halted. kill() called!")) return;
   if (count_ == f_.busy_at) {
     for (int i = 0; i < 4; ++i) {
       std::this_thread::sleep_for(std::chrono::milliseconds(150));

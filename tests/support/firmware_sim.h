@@ -38,6 +38,7 @@ class FirmwareSim {
   void on_line(const std::string& line);
   void marlin(const std::string& line);
   void grbl_execute();
+  bool run_command(const std::string& command, const std::string& fatal);
   void reply(const std::string& text);
 
   bool grbl_;
