@@ -97,6 +97,33 @@ bool run_extra(machines::SerialPort& port, machines::Firmware fw, const std::vec
   return machines::stream(port, s, o, never, nullptr).end == machines::StreamEnd::Done;
 }
 
+// What the end of a run means for the user: the summary, or the pause / stop with the line
+// to resume from; after a pause the machine is first made safe.
+int finish(const SendArgs& a, const machines::StreamResult& r, const machines::Streamer& s,
+           const std::vector<machines::Command>& all, const machines::MachineProfile* m,
+           machines::SerialPort& port, machines::Firmware fw, const machines::StreamOptions& o) {
+  const std::string resume = "resume with: strand send " + a.file + " --port " + a.port + " --resume-from " + std::to_string(r.resume_line);
+  switch (r.end) {
+    case machines::StreamEnd::Done:
+      std::cout << "  sent           " << s.total() << " commands\n";
+      return 0;
+    case machines::StreamEnd::Paused: {
+      const auto safe = m ? machines::safe_state_gcode(*m, machines::modal_state_before(all, r.resume_line, *m)) : std::vector<std::string>{};
+      run_extra(port, fw, safe, o);
+      std::cout << "  paused         before line " << r.resume_line << (safe.empty() ? "" : " (" + safe.front() + ")") << "; " << resume << "\n";
+      return 130;
+    }
+    case machines::StreamEnd::Failed:
+      std::cerr << "strand: firmware error at line " << r.resume_line << ": " << r.message << "; " << resume << "\n";
+      return 1;
+    case machines::StreamEnd::Disconnected:
+    case machines::StreamEnd::NoReply:
+      std::cerr << "strand: stopped at line " << r.resume_line << ": " << r.message << "; " << resume << "\n";
+      return 1;
+  }
+  return 1;
+}
+
 int run_send(const SendArgs& a) {
   const std::string text = slicer::read_file(a.file);
   const std::vector<machines::Command> all = machines::commands_of(text, a.file);
@@ -128,26 +155,7 @@ int run_send(const SendArgs& a) {
   const auto progress = [&](const machines::Streamer& st) { if (tty) draw_progress(st, cmds, left); };
   const machines::StreamResult r = machines::stream(port, s, o, g_pause, progress);
   if (tty) std::cerr << "\n";
-  const std::string resume = "resume with: strand send " + a.file + " --port " + a.port + " --resume-from " + std::to_string(r.resume_line);
-  switch (r.end) {
-    case machines::StreamEnd::Done:
-      std::cout << "  sent           " << s.total() << " commands\n";
-      return 0;
-    case machines::StreamEnd::Paused: {
-      const auto safe = m ? machines::safe_state_gcode(*m, machines::modal_state_before(all, r.resume_line, *m)) : std::vector<std::string>{};
-      run_extra(port, fw, safe, o);
-      std::cout << "  paused         before line " << r.resume_line << (safe.empty() ? "" : " (" + safe.front() + ")") << "; " << resume << "\n";
-      return 130;
-    }
-    case machines::StreamEnd::Failed:
-      std::cerr << "strand: firmware error at line " << r.resume_line << ": " << r.message << "; " << resume << "\n";
-      return 1;
-    case machines::StreamEnd::Disconnected:
-    case machines::StreamEnd::NoReply:
-      std::cerr << "strand: stopped at line " << r.resume_line << ": " << r.message << "; " << resume << "\n";
-      return 1;
-  }
-  return 1;
+  return finish(a, r, s, all, m.get(), port, fw, o);
 }
 
 }  // namespace

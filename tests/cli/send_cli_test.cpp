@@ -7,6 +7,11 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
+#include <sstream>
+#include <thread>
+
 #include "machines/send/streamer.h"
 #include "slicer/file_io.h"
 #include "tests/support/cli_runner.h"
@@ -107,6 +112,53 @@ TEST(SendCli, FirmwareErrorStopsAndTheJobResumes) {
   EXPECT_EQ(preamble[0], "G21");
   EXPECT_EQ(preamble[1], "G90");
   EXPECT_EQ(preamble[2], "M280 P0 S90");
+  EXPECT_EQ(std::vector<std::string>(done.end() - static_cast<long>(rest.size()), done.end()), rest);
+}
+
+// Ctrl-C: the lines in flight finish, the pen goes up (the profile's command), the job
+// can be resumed from the line printed, and the two runs together execute the whole file.
+TEST(SendCli, InterruptPausesWithThePenUpAndResumes) {
+  const Job j = plot_job("xy-plotter-servo");
+  std::vector<std::string> first;
+  CliResult r;
+  {
+    FirmwareSim sim(false, {.busy_at = 20});  // command 20 takes 600 ms: the interrupt lands there
+    std::thread sender([&] {
+      r = run_strand("send job.gcode --port " + sim.port() + " --timeout 0.3 --machine xy-plotter-servo > out.txt & "
+                     "echo $! > '" + j.dir + "/pid.txt'; wait $!", j.dir);
+    });
+    // interrupt once the controller is inside command 20 (bounded wait: 20 s)
+    for (int i = 0; i < 2000 && sim.executed().size() < 20; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    const std::string pid = slurp(j.dir + "/pid.txt");
+    // $! is the background list (cd && strand): interrupt it and its children, as a
+    // terminal's Ctrl-C reaches the whole foreground group
+    if (!pid.empty()) {
+      std::string children = slurp("/proc/" + std::to_string(std::stoi(pid)) + "/task/" + std::to_string(std::stoi(pid)) + "/children");
+      kill(std::stoi(pid), SIGINT);
+      std::istringstream in(children);
+      for (int child = 0; in >> child;) kill(child, SIGINT);
+    }
+    sender.join();
+    first = sim.executed();
+  }
+  EXPECT_EQ(r.exit_code, 130);
+  const std::string out = slurp(j.dir + "/out.txt");
+  const auto at = out.find("paused         before line ");
+  ASSERT_NE(at, std::string::npos) << out;
+  const int line = std::stoi(out.substr(at + 27));
+  ASSERT_FALSE(first.empty());
+  EXPECT_EQ(first.back(), "M280 P0 S90");  // pen up after the last file command that ran
+  const std::size_t ran = first.size() - 1;
+  EXPECT_EQ(j.commands[ran].file_line, line);
+  const auto all = texts(j.commands);
+  EXPECT_EQ(std::vector<std::string>(first.begin(), first.end() - 1),
+            std::vector<std::string>(all.begin(), all.begin() + static_cast<long>(ran)));
+  FirmwareSim sim(false, {});
+  ASSERT_EQ(send(j, sim, "--machine xy-plotter-servo --resume-from " + std::to_string(line)).exit_code, 0);
+  const auto done = sim.executed();
+  const auto rest = texts(j.commands, ran);
+  ASSERT_GE(done.size(), rest.size());
   EXPECT_EQ(std::vector<std::string>(done.end() - static_cast<long>(rest.size()), done.end()), rest);
 }
 
