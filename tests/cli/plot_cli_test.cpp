@@ -13,6 +13,7 @@
 #include "machines/profile.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "slicer/file_io.h"
+#include "slicer/svg_import.h"
 #include "tests/support/cli_runner.h"
 
 namespace strand::testing {
@@ -248,6 +249,48 @@ TEST(TextCli, WritesAnSvgThatPlotsAndGcodeDirectly) {
   EXPECT_EQ(run_strand("text x --font 'No Such Face' -o x.svg", dir).exit_code, 2);
   EXPECT_FALSE(exists(dir + "/x.svg"));
   expect_input_error(run_strand("text x -o x.pdf", dir), "text.output");
+}
+
+// Issue 14: a grey photo traced into two pen layers, level k on pen k, cross-hatched.
+TEST(TraceCli, PhotoTracesIntoTwoPenLayers) {
+  const auto dir = fresh_dir("trace");
+  const auto svg = run_strand("trace '" + kSamples + "photo.png' --levels 2 -o photo.svg", dir);
+  ASSERT_EQ(svg.exit_code, 0) << svg.err;
+  const auto d = slicer::import_svg(slurp(dir + "/photo.svg"), "photo.svg");
+  ASSERT_GE(d.shapes.size(), 2u);
+  EXPECT_EQ(d.shapes.front().group_ids, std::vector<std::string>{"m1"});
+  EXPECT_EQ(d.shapes.back().group_ids, std::vector<std::string>{"m2"});
+  EXPECT_LT((d.page_mm - slicer::Vec2(60, 40)).norm(), 1e-9);  // 240 x 160 px at 0.25 mm
+  const auto plot = run_strand("plot '" + kSamples + "photo.png' --trace --levels 2 --hatch-spacing 1.5 -o p.gcode --report p.json", dir);
+  ASSERT_EQ(plot.exit_code, 0) << plot.err;
+  const std::string g = slurp(dir + "/p.gcode");
+  EXPECT_NE(g.find(";PEN:1"), std::string::npos);
+  EXPECT_NE(g.find(";PEN:2"), std::string::npos);
+  const auto report = nlohmann::json::parse(slurp(dir + "/p.json"));
+  EXPECT_GT(report["estimate"]["draw_mm_per_pen"][0].get<double>(), report["estimate"]["draw_mm_per_pen"][1].get<double>());
+  EXPECT_EQ(run_strand("check p.gcode --machine xy-plotter-servo", dir).exit_code, 0);
+}
+
+TEST(TraceCli, BadImagesAndOptionsAreInputErrors) {
+  const auto dir = fresh_dir("tracebad");
+  slicer::write_file_atomic(dir + "/x.png", "not a png at all");
+  expect_input_error(run_strand("trace x.png -o x.svg", dir), "not an image");
+  expect_input_error(run_strand("plot x.png --trace -o x.gcode", dir), "not an image");
+  expect_input_error(run_strand("trace '" + kSamples + "photo.png' --levels 9 -o x.svg", dir), "trace.levels");
+  expect_input_error(run_strand("plot '" + kSamples + "shapes.svg' --levels 2 -o x.gcode", dir), "--trace");
+  EXPECT_FALSE(exists(dir + "/x.svg"));
+  EXPECT_FALSE(exists(dir + "/x.gcode"));
+}
+
+TEST(PlotCli, ConcentricFillsPassCheckOnEveryPlotter) {
+  const auto dir = fresh_dir("concentric");
+  for (const char* machine : kPlotters) {
+    SCOPED_TRACE(machine);
+    const auto r = run_strand("plot '" + kSamples + "lettering.svg' --machine " + std::string(machine) +
+                              " --fit 200x120 --fill concentric --hatch-spacing 1.5 -o c.gcode", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(run_strand(std::string("check c.gcode --machine ") + machine, dir).exit_code, 0);
+  }
 }
 
 class PlotBadInput : public ::testing::TestWithParam<BadCase> {};
