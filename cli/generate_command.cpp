@@ -8,6 +8,7 @@
 #include "patterns/registry.h"
 #include "cli/commands.h"
 #include "cli/job_runner.h"
+#include "cli/param_flags.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -20,45 +21,14 @@ namespace strand::cli {
 namespace {
 
 struct GenerateArgs {
-  std::map<std::string, std::string> text;         // flag -> raw text
-  std::map<std::string, CLI::Option*> options;
-  std::map<std::string, std::string> substrate_text;  // substrate table key -> raw text
-  std::map<std::string, CLI::Option*> substrate_options;
+  ParamFlags flags;
+  ParamFlags substrate;  // keys of slicer::substrate_table(), flags --substrate-radius etc.
   std::string machine = "deltawasp-2040-clay";
   std::string output;
   std::string report;
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
   bool viewer_e = false;
 };
-
-std::string help_for(const slicer::ParamDef& d) {
-  std::string h = d.help;
-  if (!d.unit.empty()) h += " [" + d.unit + "]";
-  if (!d.default_value.is_null()) {
-    const auto& v = d.default_value;
-    h += " (default " +
-         (v.is_string() ? v.get<std::string>() : v.is_number() ? slicer::short_number(v.get<double>()) : v.dump()) +
-         ")";
-  } else if (!d.default_text.empty()) {
-    h += " (default " + d.default_text + ")";
-  }
-  return h;
-}
-
-// The placeholder shown in --help: the unit for numbers, the shape for lists and sizes.
-std::string type_name_for(const slicer::ParamDef& d) {
-  switch (d.type) {
-    case slicer::ParamType::Integer: return "N";
-    case slicer::ParamType::NumberList: return "LIST";
-    case slicer::ParamType::Size2: return "WxD";
-    case slicer::ParamType::Text: return "NAME";
-    case slicer::ParamType::Number: break;
-  }
-  if (d.unit == "mm") return "MM";
-  if (d.unit == "mm/min") return "MM_PER_MIN";
-  if (d.unit == "deg") return "DEG";
-  return "X";
-}
 
 // The shared tail of `strand <generator>` and `strand job`: nothing is written unless
 // every step succeeded.
@@ -74,19 +44,19 @@ int run_and_print(const patterns::GeneratorSpec& spec, const nlohmann::json& giv
 
 int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
   const auto& table = spec.table();
-  nlohmann::json given = nlohmann::json::object();
-  for (const auto& d : table.defs) {
-    if (a.options.at(d.key)->count() > 0) given[d.key] = slicer::parse_param_text(table, d, a.text.at(d.key));
-  }
-  const auto& st = slicer::substrate_table();
-  nlohmann::json substrate = nlohmann::json::object();
-  for (const auto& d : st.defs) {
-    if (a.substrate_options.at(d.key)->count() > 0)
-      substrate[d.key] = slicer::parse_param_text(st, d, a.substrate_text.at(d.key));
-  }
   JobSettings settings{a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e};
-  settings.substrate = substrate;
-  return run_and_print(spec, given, settings);
+  settings.substrate = given_params(slicer::substrate_table(), a.substrate);
+  return run_and_print(spec, given_params(table, a.flags), settings);
+}
+
+// The curved-substrate flags of every generator, named as the table says (--substrate,
+// --substrate-radius, --substrate-length, --wrap, --arc-length-at).
+void add_substrate_flags(CLI::App* sub, ParamFlags& flags) {
+  for (const auto& d : slicer::substrate_table().defs) {
+    flags.options[d.key] = sub->add_option("--" + slicer::substrate_flag(d.key), flags.text[d.key], help_for(d))
+                               ->type_name(type_name_for(d))
+                               ->group("Curved substrate");
+  }
 }
 
 // Job file: {"generator", "machine", "params": {flag: value}, "output", "report",
@@ -108,21 +78,12 @@ void add_generator_commands(CLI::App& app, Action& action) {
   for (const auto& spec : patterns::generators()) {
     auto args = std::make_shared<GenerateArgs>();
     CLI::App* sub = app.add_subcommand(spec.name, spec.summary);
-    for (const auto& d : spec.table().defs) {
-      args->options[d.key] =
-          sub->add_option("--" + d.key, args->text[d.key], help_for(d))->type_name(type_name_for(d));
-    }
-    for (const auto& d : slicer::substrate_table().defs) {
-      args->substrate_options[d.key] = sub->add_option("--" + slicer::substrate_flag(d.key),
-                                                       args->substrate_text[d.key], help_for(d))
-                                           ->type_name(type_name_for(d))
-                                           ->group("Curved substrate");
-    }
+    add_param_flags(sub, spec.table(), args->flags);
+    add_substrate_flags(sub, args->substrate);
     sub->add_option("--machine", args->machine, "machine profile name or path to a .json profile (default deltawasp-2040-clay)");
-    sub->add_option(
-        "-o,--output", args->output,
-        "G-code file to write (default " + spec.name +
-            ".gcode; a robot cell writes <name>.csv with .java, .src, .dat, .extruder.gcode)");
+    sub->add_option("-o,--output", args->output,
+                    "G-code file to write (default " + spec.name +
+                        ".gcode; a robot cell writes <name>.csv with .java, .src, .dat, .extruder.gcode)");
     sub->add_option("--report", args->report, "write a JSON report here");
     sub->add_option("--arc-tolerance", args->arc_tolerance_mm,
                     "max chord error when arcs become G1 segments [mm] (default 0.01)");
