@@ -22,6 +22,8 @@ for job in "$samples"/*.json; do
     # Crossings in (u, v) around the cylinder, poses against the nozzle, reach and joints.
     "$strand" check "$name.$ext" --machine "$machine" > "$name-check.txt"
     tail -n 1 "$name-check.txt"
+    # Drawn on the workpiece: the cylinder's axis along x, its u = 0 line on top.
+    for view in png html glb; do "$strand" preview "$name.$ext" -o "$name-preview.$view"; done
     continue
   fi
   "$strand" job "$job" -o "$name.gcode" --report "$name.json" | tee "$name-summary.txt"

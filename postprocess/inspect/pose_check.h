@@ -13,6 +13,7 @@
 #include "machines/joint_analysis.h"
 #include "machines/profile.h"
 #include "postprocess/inspect/crossings.h"
+#include "postprocess/inspect/curved_files.h"
 #include "postprocess/inspect/gcode_parser.h"
 
 namespace strand::post {
@@ -54,8 +55,6 @@ struct PoseCheckReport {
 PoseCheckReport check_pose_csv(std::string_view text, const std::string& file,
                                const machines::MachineProfile& robot_cell);
 
-// True when the G-code declares a rotary axis (;ROTARY_AXIS: header comment).
-bool is_rotary_gcode(std::string_view text);
 // A rotary file mapped back onto its cylinder (;ROTARY_AXIS_DIR/POINT, ;SUBSTRATE: header);
 // `machine` (optional) adds the envelope. Throws InputError when the header is incomplete.
 PoseCheckReport check_rotary_gcode(std::string_view text, const std::string& file,
@@ -65,12 +64,6 @@ nlohmann::json to_json(const PoseCheckReport& r);
 std::string to_text(const PoseCheckReport& r);
 
 // Shared by both checks: deposit radius per layer, strands and their contacts on the cylinder.
-struct CylinderSample {
-  int layer = 0;
-  bool extrude = false;                      // the motion from the previous sample deposits
-  slicer::Vec3 p_mm = slicer::Vec3::Zero();  // workpiece frame: axis = z
-  std::size_t source = 0;
-};
 void check_on_cylinder(const std::vector<CylinderSample>& samples, double touch_mm,
                        PoseCheckReport& report);
 

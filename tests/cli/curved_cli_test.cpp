@@ -7,7 +7,9 @@
 #include <nlohmann/json.hpp>
 
 #include "patterns/registry.h"
+#include "postprocess/preview/preview_scene.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/png_pixels.h"
 #include "tests/support/sample_jobs.h"
 
 namespace strand::testing {
@@ -128,6 +130,32 @@ TEST(CurvedCli, FullWrapWithoutAPeriodicDesignIsNamed) {
     ++checked;
   }
   if (checked == 0) GTEST_SKIP() << "every design has a periodic variant";
+}
+
+TEST(CurvedCli, PreviewDrawsPoseCsvsAndRotaryFilesOnTheirWorkpiece) {
+  const auto dir = fresh_dir("curved-preview");
+  ASSERT_EQ(
+      run_strand("job '" + samples_dir() + "/missing-rib-cylinder.json' -o p.csv", dir).exit_code,
+      0);
+  ASSERT_EQ(run_strand("job '" + samples_dir() + "/scaffold-cylinder-rotary.json' -o r.gcode", dir)
+                .exit_code,
+            0);
+  for (const char* f : {"p.csv", "r.gcode"}) {
+    const auto r = run_strand(std::string("preview ") + f + " -o x.png --view iso", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(std::string(f) == "p.csv" ? "(3 layers" : "(4 layers"), std::string::npos)
+        << r.out;
+    EXPECT_GT(png_stats(slurp(dir + "/x.png")).drawn_fraction, 0.02) << f;
+  }
+  // The CSV's features come through: the missing-rib's nodes in the node colour.
+  ASSERT_EQ(run_strand("preview p.csv -o n.png", dir).exit_code, 0);
+  const auto node = post::feature_colour(slicer::Feature::Node);
+  EXPECT_GT(colour_spot(slurp(dir + "/n.png"), int(node.r * 255), int(node.g * 255),
+                        int(node.b * 255), 30)
+                .count,
+            100);
+  expect_input_error(run_strand("preview p.csv -o m.png --marks", dir),
+                     "marks: only for flat G-code");
 }
 
 TEST(CurvedCli, HelpListsTheSubstrateFlags) {
