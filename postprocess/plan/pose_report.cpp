@@ -67,6 +67,24 @@ nlohmann::json layers_json(const slicer::PoseProgram& p, const std::vector<doubl
   return out;
 }
 
+// "6 in 3 layers, 2 per layer (forward and return alternate), turning at most 290.7 deg per
+// lap"; differing counts read "2/1/2/1 per layer".
+std::string laps_text(const nlohmann::json& r) {
+  std::vector<std::string> counts;
+  for (const auto& l : r.at("layers")) counts.push_back(std::to_string(l.at("laps").get<int>()));
+  std::string per_layer = counts.empty() ? "0" : counts.front();
+  if (std::any_of(counts.begin(), counts.end(), [&](const std::string& c) { return c != counts.front(); })) {
+    per_layer.clear();
+    for (const auto& c : counts) per_layer += (per_layer.empty() ? "" : "/") + c;
+  }
+  double widest = 0.0;
+  for (const auto& lap : r.at("laps")) widest = std::max(widest, lap.at("turn_range_deg").get<double>());
+  const auto& tot = r.at("totals");
+  return std::to_string(tot.at("laps").get<int>()) + " in " + std::to_string(tot.at("layers").get<int>()) +
+         " layers, " + per_layer + " per layer (forward and return alternate), turning at most " +
+         machines::fmt_fixed(widest, 1) + " deg per lap";
+}
+
 }  // namespace
 
 std::vector<double> bead_areas_mm2(const slicer::Toolpath& t) {
@@ -130,13 +148,8 @@ std::string pose_summary(const nlohmann::json& r) {
   o << "  u stretch      ";
   for (const auto& l : r.at("layers")) o << fmt_fixed(l.at("u_stretch").get<double>(), 4) << " ";
   o << "(layer length per mm of pattern x)\n";
-  o << "  laps           " << tot.at("laps").get<int>() << " in " << tot.at("layers").get<int>()
-    << " layers:";
-  for (const auto& lap : r.at("laps")) {
-    o << " " << lap.at("direction").get<std::string>().substr(0, 3) << " "
-      << fmt_fixed(lap.at("turn_range_deg").get<double>(), 1) << "deg";
-  }
-  o << "\n  deposited      " << fmt_fixed(tot.at("deposit_length_mm").get<double>() / 1000.0, 3)
+  o << "  laps           " << laps_text(r) << "\n";
+  o << "  deposited      " << fmt_fixed(tot.at("deposit_length_mm").get<double>() / 1000.0, 3)
     << " m on the surface, " << tot.at("poses").get<int>() << " poses\n";
   o << "  time           " << clock_text(tot.at("time_s").get<double>()) << "\n";
   if (r.contains("ink"))

@@ -136,6 +136,23 @@ TEST(ProduceCurved, ExtruderETotalIsVextOverVcartTimesTheDepositedLength) {
               thesis().program.points.back().t_s * 0.001);
 }
 
+TEST(ProduceCurved, AVolumetricExtruderPushesTheBeadVolume) {
+  Job j = sample_job("missing-rib-cylinder.json");
+  j.machine.robot.extruder.time_based = false;
+  j.machine.robot.extruder.handshake_pin = -1;
+  const auto out = produce_curved(j.toolpath, j.substrate, j.machine, 0.01, "v.csv");
+  const std::string g = file(out, "v.extruder.gcode");
+  double e = 0.0;
+  std::istringstream in(g);
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("G1 E", 0) == 0) e += std::stod(line.substr(4));
+  }
+  const auto& l = j.toolpath.layers.front().strokes.front();
+  const double expected = slicer::bead_area_mm2(l.width_mm, l.height_mm) * deposited_mm(out.program) / j.machine.deposition.mm3_per_e;
+  EXPECT_NEAR(e, expected, expected * 0.005);
+  EXPECT_EQ(g.find("M226"), std::string::npos) << "no handshake without a pin";
+}
+
 TEST(ProduceCurved, EveryEMoveIsWithinTheFirmwaresLimitAndLapsWaitForTheRobot) {
   const std::string g = file(thesis(), "part.extruder.gcode");
   std::istringstream in(g);
