@@ -39,8 +39,9 @@ std::pair<slicer::Vec2, slicer::Vec2> bead_bounds(const std::vector<slicer::Stro
   return {lo - half, hi + half};
 }
 
+// `period_mm` > 0: a ring lattice, whose width is the period (its strand runs past the seam).
 nlohmann::json derived(ChiralKind kind, const ChiralParams& p, const NodeRings& r,
-                       const std::vector<slicer::Stroke>& strokes) {
+                       const std::vector<slicer::Stroke>& strokes, double period_mm = 0.0) {
   std::map<std::string, double> by_feature;
   double lattice_len = 0, total = 0;
   for (const auto& s : strokes) {
@@ -53,8 +54,9 @@ nlohmann::json derived(ChiralKind kind, const ChiralParams& p, const NodeRings& 
       at = seg.end_mm;
     }
   }
-  const auto [lo, hi] = bead_bounds(strokes, p.nozzle_mm, true);
-  const auto [llo, lhi] = bead_bounds(strokes, p.nozzle_mm, false);
+  auto [lo, hi] = bead_bounds(strokes, p.nozzle_mm, true);
+  auto [llo, lhi] = bead_bounds(strokes, p.nozzle_mm, false);
+  if (period_mm > 0) lo.x() = llo.x() = -period_mm / 2, hi.x() = lhi.x() = period_mm / 2;
   const double height = p.layers * p.layer_height_mm;
   const double area = slicer::bead_area_mm2(p.nozzle_mm, p.layer_height_mm);
   const double density = lattice_len * area / ((lhi - llo).prod() * p.layer_height_mm);
@@ -92,17 +94,56 @@ double chiral_min_cell_mm(ChiralKind kind, const ChiralParams& p) {
   return min_cell_mm(lattice_maker(kind), rings_of(p), p.nozzle_mm);
 }
 
-slicer::Toolpath generate_chiral(ChiralKind kind, const ChiralParams& p) {
-  const NodeRings rings = rings_of(p);
-  const ChiralLattice lattice = lattice_maker(kind)(p.cols, p.rows, p.cell_mm);
-  const std::vector<slicer::Stroke> strokes =
-      chiral_layer(lattice, rings, {p.nozzle_mm, p.layer_height_mm, p.grip_mm});
+namespace {
+
+slicer::Toolpath stacked(ChiralKind kind, const ChiralParams& p,
+                         const std::vector<slicer::Stroke>& strokes) {
   slicer::Toolpath t;
   t.generator = kind == ChiralKind::Tetra ? "tetrachiral" : "hexachiral";
   for (int k = 0; k < p.layers; ++k) {
     t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, strokes});
   }
+  return t;
+}
+
+}  // namespace
+
+slicer::Toolpath generate_chiral(ChiralKind kind, const ChiralParams& p) {
+  const NodeRings rings = rings_of(p);
+  const ChiralLattice lattice = lattice_maker(kind)(p.cols, p.rows, p.cell_mm);
+  const std::vector<slicer::Stroke> strokes =
+      chiral_layer(lattice, rings, {p.nozzle_mm, p.layer_height_mm, p.grip_mm});
+  slicer::Toolpath t = stacked(kind, p, strokes);
   t.derived = derived(kind, p, rings, strokes);
+  return t;
+}
+
+WrapRule chiral_wrap_rule(ChiralKind kind, const ChiralParams& p) {
+  WrapRule rule;
+  rule.min_cell_mm = chiral_min_cell_mm(kind, p);
+  if (kind == ChiralKind::Tetra) {
+    rule.min_cells = 4;
+    rule.step = 2;
+    rule.count_why =
+        "an even number: the frame at each end pairs the end nodes, which have 3 ligaments";
+  } else {
+    rule.count_why = "so neighbours round the cylinder are distinct nodes";
+  }
+  return rule;
+}
+
+slicer::Toolpath generate_chiral_ring(ChiralKind kind, ChiralParams p, const WrapFit& fit) {
+  p.cell_mm = fit.cell_mm;
+  p.cols = fit.cells;
+  const NodeRings rings = rings_of(p);
+  const auto ring = kind == ChiralKind::Tetra ? &tetrachiral_ring : &hexachiral_ring;
+  const ChiralLattice lattice = ring(fit.cells, p.rows, p.cell_mm);
+  const std::vector<slicer::Stroke> strokes =
+      chiral_layer(lattice, rings, {p.nozzle_mm, p.layer_height_mm, p.grip_mm});
+  slicer::Toolpath t = stacked(kind, p, strokes);
+  t.derived = derived(kind, p, rings, strokes, fit.period_mm);
+  t.derived["cell_mm"] = p.cell_mm;
+  add_wrap_report(t.derived, fit, "node spacing (cell, both directions, cols ignored)");
   return t;
 }
 

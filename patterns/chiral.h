@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "patterns/wrap_fit.h"
 #include "slicer/params.h"
 #include "slicer/toolpath.h"
 
@@ -37,5 +38,13 @@ ChiralParams chiral_params_from(ChiralKind kind, const std::string& name,
 double chiral_min_cell_mm(ChiralKind kind, const ChiralParams& p);
 // Layers centred on (0, 0), layer k at z = (k + 1) h; derived sizes and porosity.
 slicer::Toolpath generate_chiral(ChiralKind kind, const ChiralParams& p);
+
+// `--wrap full`: what a ring of this lattice allows round a circumference (the smallest
+// valid cell; tetrachiral needs an even count, so each end row pairs into frame edges).
+WrapRule chiral_wrap_rule(ChiralKind kind, const ChiralParams& p);
+// The lattice as a ring periodic in x with the period of `fit` (fit.cells nodes round it at
+// fit.cell_mm in both directions, p.cols ignored), `p.rows` cells along y, frame and grips
+// only at the two ends; one strand per layer that runs on past the seam.
+slicer::Toolpath generate_chiral_ring(ChiralKind kind, ChiralParams p, const WrapFit& fit);
 
 }  // namespace strand::patterns

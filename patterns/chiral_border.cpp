@@ -146,16 +146,8 @@ std::pair<double, double> extent_along(const std::vector<Vec2>& poly, const Vec2
   return {lo, hi};
 }
 
-// How a frame edge leaves node `c` for border point `p`: its end angle on the attach
-// circle and the connector points out to (not including) p. Ligaments leave their tangent
-// points counter-clockwise, so a straight radial connector is safe unless a ligament's
-// tangent point lies just clockwise of it; then the connector leaves a little clockwise of
-// that tangent point, steps out to the frame radius and runs to p on the far side of the
-// ligament's line.
-struct FrameAttach {
-  double angle_rad = 0;
-  std::vector<Vec2> pts;
-};
+}  // namespace
+
 FrameAttach frame_attach(const Vec2& c, const std::vector<double>& ligament_angles,
                          const NodeRings& rings, const Vec2& p) {
   const double theta = slicer::angle_of(c, p);
@@ -174,6 +166,8 @@ FrameAttach frame_attach(const Vec2& c, const std::vector<double>& ligament_angl
   f.pts = {c + rings.attach_mm * slicer::unit_vector(f.angle_rad), c + rings.frame_mm * slicer::unit_vector(f.angle_rad)};
   return f;
 }
+
+namespace {
 
 void add_frame(ChiralFrame& b, const ChiralLattice& l, const NodeRings& rings, const Border& border,
                const std::vector<std::vector<double>>& end_angles, double nozzle_mm,

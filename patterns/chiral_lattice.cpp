@@ -61,6 +61,60 @@ ChiralLattice tetrachiral_lattice(int cols, int rows, double cell_mm) {
   return l;
 }
 
+namespace {
+
+// Row-major ring lattice: `shift(j)` is row j's offset in cells, `neighbours_below(i, j)`
+// the column indices (unwrapped, may leave [0, around)) of row j - 1's neighbours of (i, j).
+template <class Shift, class Below>
+ChiralLattice ring(int around, int rows, double cell_mm, double row_mm, Shift shift,
+                   Below neighbours_below) {
+  ChiralLattice l;
+  l.cell_mm = cell_mm;
+  l.period_mm = around * cell_mm;
+  auto id = [&](int i, int j) { return j * around + i; };
+  auto link = [&](int from_col, int from_row, int to) {  // from_col unwrapped
+    const int wrapped = ((from_col % around) + around) % around;
+    l.ligaments.emplace_back(id(wrapped, from_row), to);
+    l.wraps.push_back(-(from_col - wrapped) / around);
+  };
+  for (int j = 0; j <= rows; ++j) {
+    for (int i = 0; i < around; ++i) {
+      const double x = (i + 0.5 + shift(j)) * cell_mm - l.period_mm / 2;
+      l.nodes.emplace_back(x, (j - rows / 2.0) * row_mm);
+      link(i - 1, j, id(i, j));
+      if (j > 0) {
+        for (int k : neighbours_below(i, j)) link(k, j - 1, id(i, j));
+      }
+    }
+  }
+  return l;
+}
+
+}  // namespace
+
+ChiralLattice tetrachiral_ring(int around, int rows, double cell_mm) {
+  return ring(around, rows, cell_mm, cell_mm, [](int) { return 0.0; },
+              [](int i, int) { return std::vector<int>{i}; });
+}
+
+ChiralLattice hexachiral_ring(int around, int rows, double cell_mm) {
+  // as hexachiral_lattice: below an odd row the neighbours are i, i + 1, below an even one
+  // i - 1, i; rows shifted by a quarter cell either way keep the seam between nodes
+  return ring(around, rows, cell_mm, cell_mm * std::sin(slicer::deg_to_rad(60.0)),
+              [](int j) { return j % 2 == 0 ? -0.25 : 0.25; },
+              [](int i, int j) {
+                const int shift = (j - 1) % 2 == 0 ? 0 : -1;
+                return std::vector<int>{i + shift, i + shift + 1};
+              });
+}
+
+std::pair<Vec2, Vec2> ligament_nodes(const ChiralLattice& l, std::size_t k) {
+  const auto [a, b] = l.ligaments[k];
+  const int wrap = l.wraps.empty() ? 0 : l.wraps[k];
+  return {l.nodes[static_cast<std::size_t>(a)],
+          l.nodes[static_cast<std::size_t>(b)] + Vec2(wrap * l.period_mm, 0.0)};
+}
+
 ChiralLattice hexachiral_lattice(int cols, int rows, double cell_mm) {
   ChiralLattice l;
   l.cell_mm = cell_mm;
@@ -123,9 +177,9 @@ std::vector<Vec2> border_polygon(const ChiralLattice& lattice, double offset_mm)
 Clearance lattice_clearance(const ChiralLattice& lattice, const NodeRings& rings) {
   Clearance c{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
   std::vector<std::pair<Vec2, Vec2>> segs;
-  for (const auto& [a, b] : lattice.ligaments) {
-    segs.push_back(ligament_tangent(lattice.nodes[static_cast<std::size_t>(a)],
-                                    lattice.nodes[static_cast<std::size_t>(b)], rings.attach_mm));
+  for (std::size_t k = 0; k < lattice.ligaments.size(); ++k) {
+    const auto [pa, pb] = ligament_nodes(lattice, k);
+    segs.push_back(ligament_tangent(pa, pb, rings.attach_mm));
   }
   for (std::size_t i = 0; i < segs.size(); ++i) {
     const auto [a, b] = lattice.ligaments[i];

@@ -11,18 +11,30 @@
 namespace strand::patterns {
 
 // Nodes and ligaments of a lattice in the part frame (mm), plus the boundary cycle.
+// A ring lattice (wrapped round a cylinder) is periodic in x: its nodes lie in one period
+// [-period / 2, period / 2) and a ligament across the seam reaches a node's copy one period
+// away, so its geometry is taken with the far node shifted by wraps[k] * period along x.
 struct ChiralLattice {
   std::vector<slicer::Vec2> nodes;
   std::vector<std::pair<int, int>> ligaments;  // node indices
-  std::vector<int> boundary;                   // outer nodes, counter-clockwise
+  std::vector<int> boundary;                   // outer nodes, counter-clockwise (flat only)
   double cell_mm = 0.0;                        // centre-to-centre distance of neighbours
+  double period_mm = 0.0;                      // ring: the period along x; 0 = flat
+  std::vector<int> wraps;                      // ring: per ligament; empty when flat
 };
+
+// The two node centres of ligament k as it is drawn: the second shifted by its wrap.
+std::pair<slicer::Vec2, slicer::Vec2> ligament_nodes(const ChiralLattice& l, std::size_t k);
 
 // Square grid of (cols + 1) x (rows + 1) nodes, pitch `cell_mm`, centred on (0, 0).
 ChiralLattice tetrachiral_lattice(int cols, int rows, double cell_mm);
 // Triangular lattice: rows + 1 rows of cols + 1 nodes, odd rows shifted by cell / 2,
 // rows cell * sin 60 apart, centred on (0, 0).
 ChiralLattice hexachiral_lattice(int cols, int rows, double cell_mm);
+// Ring versions: rows + 1 rows of `around` nodes, period around * cell; rows centred on
+// y = 0, x in [-period / 2, period / 2) with the seam between nodes.
+ChiralLattice tetrachiral_ring(int around, int rows, double cell_mm);
+ChiralLattice hexachiral_ring(int around, int rows, double cell_mm);
 
 // Radii of the passes around a node. The thesis' core is the hole left inside the inner
 // pass: innermost pass at core / 2 + d / 2, passes h apart, ligaments attached one h

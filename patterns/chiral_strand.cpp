@@ -49,15 +49,19 @@ Built build_graph(const ChiralLattice& l, const NodeRings& rings, const StrandSp
   const int n = static_cast<int>(l.nodes.size());
   b.graph.vertex_count = n;
   b.end_angles.resize(static_cast<std::size_t>(n));
-  for (const auto& [a, c] : l.ligaments) {
-    const Vec2 pa = l.nodes[static_cast<std::size_t>(a)], pc = l.nodes[static_cast<std::size_t>(c)];
+  for (std::size_t k = 0; k < l.ligaments.size(); ++k) {
+    const auto [pa, pc] = ligament_nodes(l, k);
     const auto [ta, tc] = ligament_tangent(pa, pc, rings.attach_mm);
     EdgePath path;
     path.pts.push_back(ta);
     path.add(tc, Feature::Ligament);
-    add_edge(b, a, c, slicer::angle_of(pa, ta), slicer::angle_of(pc, tc), std::move(path));
+    path.wrap = l.wraps.empty() ? 0 : l.wraps[k];
+    add_edge(b, l.ligaments[k].first, l.ligaments[k].second, slicer::angle_of(pa, ta),
+             slicer::angle_of(pc, tc), std::move(path));
   }
-  ChiralFrame frame = chiral_frame(l, rings, b.end_angles, spec.nozzle_mm, spec.grip_mm);
+  ChiralFrame frame =
+      l.period_mm > 0 ? chiral_ring_frame(l, rings, b.end_angles, spec.nozzle_mm, spec.grip_mm)
+                      : chiral_frame(l, rings, b.end_angles, spec.nozzle_mm, spec.grip_mm);
   if (frame.grip_edge >= 0) b.grip_edge = static_cast<int>(b.paths.size()) + frame.grip_edge;
   b.mark = frame.mark;
   for (FrameEdge& e : frame.edges)
@@ -117,36 +121,55 @@ std::vector<Visit> visits_of(const Built& b, const NodeRings& rings,
   return visits;
 }
 
+// Rotates a closed stroke so it starts (and ends) at `mark`, a joint of its segments. On a
+// ring the stroke may close one or more periods away; the pieces moved to the end are
+// shifted by that displacement, so the stroke stays continuous.
+void start_at(slicer::Stroke& s, const Vec2& mark) {
+  const Vec2 closing = s.end_mm() - s.start_mm;
+  for (std::size_t k = 0; k < s.segments.size(); ++k) {
+    if ((s.segments[k].end_mm - mark).norm() > 1e-9) continue;
+    for (std::size_t i = 0; i <= k; ++i) {
+      s.segments[i].end_mm += closing;
+      s.segments[i].center_mm += closing;
+    }
+    std::rotate(s.segments.begin(), s.segments.begin() + static_cast<long>(k + 1),
+                s.segments.end());
+    s.start_mm = mark;
+    return;
+  }
+}
+
+// The strand of one circuit. Walking it, `at` counts the periods (ring lattices) between
+// where the strand is and the stored position of the node it reached, so every edge and
+// node visit is drawn where the strand is: a ring strand runs on past the seam.
 slicer::Stroke assemble(const Built& b, const ChiralLattice& l, const NodeRings& rings,
                         std::vector<CircuitStep> steps) {
   auto it = std::find_if(steps.begin(), steps.end(),
                          [&](const CircuitStep& s) { return s.edge == b.grip_edge; });
-  if (it != steps.end()) std::rotate(steps.begin(), it, steps.end());
+  const bool has_grip = it != steps.end();
+  if (has_grip) std::rotate(steps.begin(), it, steps.end());
   const std::vector<Visit> visits = visits_of(b, rings, steps);
   slicer::Stroke s;
+  int at = 0;
   for (std::size_t i = 0; i < steps.size(); ++i) {
-    const EdgePath p = oriented(b.paths[static_cast<std::size_t>(steps[i].edge)], steps[i].forward);
-    if (i == 0) s.start_mm = p.pts.front();
+    const EdgePath& e = b.paths[static_cast<std::size_t>(steps[i].edge)];
+    const Vec2 shift((steps[i].forward ? at : at - e.wrap) * l.period_mm, 0.0);
+    at += steps[i].forward ? e.wrap : -e.wrap;
+    const EdgePath p = oriented(e, steps[i].forward);
+    if (i == 0) s.start_mm = p.pts.front() + shift;
     for (std::size_t k = 0; k < p.feats.size(); ++k)
-      s.segments.push_back(slicer::line_to(p.pts[k + 1], p.feats[k]));
+      s.segments.push_back(slicer::line_to(p.pts[k + 1] + shift, p.feats[k]));
     const Visit& v = visits[i];
-    for (const Segment& seg : node_hairpin(l.nodes[static_cast<std::size_t>(v.vertex)], rings,
-                                           v.in_rad, v.sweep_rad, v.extend_rad)) {
+    const Vec2 centre = l.nodes[static_cast<std::size_t>(v.vertex)] + Vec2(at * l.period_mm, 0.0);
+    for (const Segment& seg : node_hairpin(centre, rings, v.in_rad, v.sweep_rad, v.extend_rad)) {
       s.segments.push_back(seg);
     }
   }
-  return s;
-}
-
-// Rotates a closed stroke so it starts (and ends) at `mark`, a joint of its segments.
-void start_at(slicer::Stroke& s, const Vec2& mark) {
-  for (std::size_t k = 0; k < s.segments.size(); ++k) {
-    if ((s.segments[k].end_mm - mark).norm() > 1e-9) continue;
-    std::rotate(s.segments.begin(), s.segments.begin() + static_cast<long>(k + 1),
-                s.segments.end());
-    s.start_mm = s.segments.back().end_mm;
-    return;
+  if (has_grip) {
+    const int wrap = b.paths[static_cast<std::size_t>(b.grip_edge)].wrap;
+    start_at(s, b.mark + Vec2((steps[0].forward ? 0 : -wrap) * l.period_mm, 0.0));
   }
+  return s;
 }
 
 }  // namespace
@@ -183,7 +206,6 @@ std::vector<slicer::Stroke> chiral_layer(const ChiralLattice& lattice, const Nod
   std::vector<slicer::Stroke> strokes;
   for (auto& circuit : noncrossing_circuits(b.graph)) {
     slicer::Stroke s = assemble(b, lattice, rings, std::move(circuit));
-    if (spec.grip_mm > 0 && strokes.empty()) start_at(s, b.mark);
     s.width_mm = spec.nozzle_mm;
     s.height_mm = spec.layer_height_mm;
     strokes.push_back(std::move(s));

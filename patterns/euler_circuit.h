@@ -23,9 +23,10 @@ struct CircuitStep {
 };
 
 // Closed curves that together use every edge once; every vertex visit pairs two ends
-// adjacent in angular order. One curve when the graph is connected with all degrees even
-// (degree 4 is guaranteed; higher degrees are merged greedily and checked by the caller).
-// Deterministic: starts from edge 0 and vertices in index order.
+// adjacent in angular order, never the two ends of a loop. One curve when the graph is
+// connected with all degrees even (degree 4 is guaranteed; higher degrees are merged by
+// flipping one vertex, or a vertex and a neighbour, while that merges curves, and checked by
+// the caller). Deterministic: starts from edge 0 and vertices in index order.
 std::vector<std::vector<CircuitStep>> noncrossing_circuits(const PlaneGraph& g);
 
 }  // namespace strand::patterns

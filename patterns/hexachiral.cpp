@@ -7,4 +7,10 @@ slicer::Toolpath generate_hexachiral(const ChiralParams& p) {
   return generate_chiral(ChiralKind::Hexa, p);
 }
 
+slicer::Toolpath generate_hexachiral_wrapped(const ChiralParams& p, double period_mm) {
+  const WrapFit fit = fit_around("hexachiral", period_mm, p.cell_mm,
+                                 chiral_wrap_rule(ChiralKind::Hexa, p));
+  return generate_chiral_ring(ChiralKind::Hexa, p, fit);
+}
+
 }  // namespace strand::patterns

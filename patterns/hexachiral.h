@@ -10,6 +10,10 @@
 namespace strand::patterns {
 
 slicer::Toolpath generate_hexachiral(const ChiralParams& p);
+// `--wrap full`: a sleeve periodic in x with period `period_mm`, at least 3 cells round it
+// (cell adjusted to fit). Its end rows have even degree, so no frame; a grip band hangs on
+// a loop at one end node.
+slicer::Toolpath generate_hexachiral_wrapped(const ChiralParams& p, double period_mm);
 
 const slicer::ParamTable& hexachiral_table();
 ChiralParams hexachiral_params_from(const nlohmann::json& values);

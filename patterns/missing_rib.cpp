@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "patterns/rib_network.h"
+#include "patterns/wrap_fit.h"
 #include "slicer/units.h"
 
 namespace strand::patterns {
@@ -172,11 +173,8 @@ nlohmann::json missing_rib_report(const MissingRibParams& p, const MissingRibGeo
   };
 }
 
-}  // namespace
-
-slicer::Toolpath generate_missing_rib(const MissingRibParams& p) {
-  const MissingRibGeometry g = missing_rib_geometry(p);
-  const RibNetwork net = Builder(p, g).build();
+// The network's strands, the same in every layer, and the report.
+slicer::Toolpath stacked(const MissingRibParams& p, const MissingRibGeometry& g, const RibNetwork& net) {
   std::vector<slicer::Stroke> strands = non_crossing_circuits(net, p.node_gap_mm);
   for (auto& s : strands) {
     s.width_mm = p.nozzle_mm;
@@ -186,6 +184,94 @@ slicer::Toolpath generate_missing_rib(const MissingRibParams& p) {
   t.generator = "missing-rib";
   for (int k = 0; k < p.layers; ++k) t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, strands});
   t.derived = missing_rib_report(p, g, net, strands);
+  return t;
+}
+
+// The lattice wrapped round a cylinder: `around` nodes per row (even, so the rotations
+// alternate across the seam too), east ribs crossing the seam to the first node's copy one
+// period on, outward ribs only at the two ends, and frame pieces pairing neighbouring tips
+// at each end along a line half a pitch outside the end rows.
+class RingBuilder {
+ public:
+  RingBuilder(const MissingRibParams& p, const MissingRibGeometry& g, int around)
+      : p_(p), around_(around), pitch_(g.pitch_mm), theta_(slicer::deg_to_rad(p.angle_deg)) {
+    net_.period_mm = around * g.pitch_mm;
+    half_y_ = g.frame_depth_mm / 2;
+  }
+
+  RibNetwork build() {
+    std::vector<int> tips[2];  // bottom, top; in order of x
+    for (int end = 0; end < 2; ++end) {
+      const int i = end == 0 ? 0 : p_.rows;
+      for (int j = 0; j < around_; ++j) {
+        Vec2 q = arm_end(i, j, end == 0 ? 3 : 1);
+        q.y() = end == 0 ? -half_y_ : half_y_;  // on the frame by construction; snap rounding
+        tips[end].push_back(net_.add_vertex(q));  // strands start on the frame
+      }
+    }
+    for (int i = 0; i <= p_.rows; ++i) {
+      for (int j = 0; j < around_; ++j) net_.add_vertex(node_at(i, j));
+    }
+    for (int i = 0; i <= p_.rows; ++i) {
+      for (int j = 0; j < around_; ++j) {
+        bent_rib(i, j, 0, node(i, (j + 1) % around_), j + 1 == around_ ? 1 : 0);
+        if (i < p_.rows) bent_rib(i, j, 1, node(i + 1, j), 0);
+      }
+    }
+    for (int end = 0; end < 2; ++end) {
+      const int i = end == 0 ? 0 : p_.rows;
+      for (int j = 0; j < around_; ++j) {
+        net_.add_edge(node(i, j), tips[end][static_cast<std::size_t>(j)], Feature::Ligament);
+      }
+      for (std::size_t j = 0; j + 1 < tips[end].size(); j += 2) {
+        net_.add_edge(tips[end][j], tips[end][j + 1], Feature::Frame);
+      }
+    }
+    return net_;
+  }
+
+ private:
+  int node(int i, int j) const { return 2 * around_ + i * around_ + j; }
+  Vec2 node_at(int i, int j) const {
+    return Vec2((j + 0.5) * pitch_ - net_.period_mm / 2, (i - p_.rows / 2.0) * pitch_);
+  }
+  Vec2 arm_end(int i, int j, int k) const {
+    const double a = ((i + j) % 2 == 0 ? theta_ : -theta_) + k * slicer::kPi / 2;
+    return node_at(i, j) + p_.rib_mm * Vec2(std::cos(a), std::sin(a));
+  }
+  void bent_rib(int i, int j, int k, int neighbour, int wrap) {
+    const int bend = net_.add_vertex(arm_end(i, j, k));
+    net_.add_edge(node(i, j), bend, Feature::Ligament);
+    net_.add_edge(bend, neighbour, Feature::Ligament, wrap);
+  }
+
+  const MissingRibParams& p_;
+  int around_ = 0;
+  double pitch_ = 0.0, theta_ = 0.0, half_y_ = 0.0;
+  RibNetwork net_;
+};
+
+}  // namespace
+
+slicer::Toolpath generate_missing_rib(const MissingRibParams& p) {
+  const MissingRibGeometry g = missing_rib_geometry(p);
+  return stacked(p, g, Builder(p, g).build());
+}
+
+slicer::Toolpath generate_missing_rib_wrapped(const MissingRibParams& given, double period_mm) {
+  MissingRibParams p = given;
+  const double c = std::cos(slicer::deg_to_rad(p.angle_deg));
+  const WrapFit fit =
+      fit_around("missing-rib", period_mm, 2 * p.rib_mm * c,
+                 {4, 2, 500, 2 * missing_rib_min_rib_mm(p) * c,
+                  "an even number: the node rotations alternate round the cylinder"});
+  p.rib_mm = fit.cell_mm / (2 * c);
+  p.cols = fit.cells;
+  MissingRibGeometry g = missing_rib_geometry(p);
+  g.frame_width_mm = g.width_mm = period_mm;
+  slicer::Toolpath t = stacked(p, g, RingBuilder(p, g, fit.cells).build());
+  t.derived["nodes"] = (p.rows + 1) * fit.cells;
+  add_wrap_report(t.derived, fit, "node pitch (the rib adjusted at the same angle)");
   return t;
 }
 

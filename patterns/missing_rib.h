@@ -46,6 +46,14 @@ MissingRibGeometry missing_rib_geometry(const MissingRibParams& p);
 // Layers centred on (0, 0); layer k at z = (k + 1) * layer height, one closed strand each.
 slicer::Toolpath generate_missing_rib(const MissingRibParams& p);
 
+// `--wrap full` round a circumference `period_mm` (x, periodic): an even number of nodes
+// round it (the rotations alternate), the pitch adjusted to fit by adjusting the rib at the
+// same angle (at least the smallest valid rib), cols ignored; frame pieces pair the outward
+// ribs only at the two ends. One closed strand per layer, running on past the seam.
+slicer::Toolpath generate_missing_rib_wrapped(const MissingRibParams& p, double period_mm);
+// Shortest rib for which filaments that are not joined stay a nozzle apart, mm.
+double missing_rib_min_rib_mm(const MissingRibParams& p);
+
 // Parameter table (CLI flags and job keys) and the checked conversion from its values.
 const slicer::ParamTable& missing_rib_table();
 MissingRibParams missing_rib_params_from(const nlohmann::json& values);

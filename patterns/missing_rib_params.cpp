@@ -36,18 +36,13 @@ const char* kName = "missing-rib";
 // stay a nozzle apart.
 void check_rib(const nlohmann::json& v, const MissingRibParams& p, std::vector<std::string>& problems) {
   const double d = p.nozzle_mm;
-  const double theta = slicer::deg_to_rad(p.angle_deg);
   if (p.node_gap_mm > d + 1e-12) {
     problems.push_back(slicer::problem(kName, "node-gap", v.at("node-gap"),
                                        "must be in [0, nozzle] = [0, " + slicer::short_number(d) +
                                            "] so the passes at a node still touch",
                                        "mm"));
   }
-  // Bends of a cell, and outer bends and the frame, stay a nozzle apart: d / (cos - sin).
-  // What is left of a rib after the corner cut at its node (node gap / sqrt 2) spans at least
-  // a nozzle across, so a frame piece or rib never runs alongside the cut: d / cos + gap / sqrt 2.
-  const double min_rib = std::max(d / (std::cos(theta) - std::sin(theta)),
-                                  d / std::cos(theta) + p.node_gap_mm / std::sqrt(2.0));
+  const double min_rib = missing_rib_min_rib_mm(p);
   if (p.rib_mm < min_rib - 1e-12) {
     problems.push_back(slicer::problem(
         kName, "rib", v.at("rib"),
@@ -59,6 +54,15 @@ void check_rib(const nlohmann::json& v, const MissingRibParams& p, std::vector<s
 }
 
 }  // namespace
+
+double missing_rib_min_rib_mm(const MissingRibParams& p) {
+  // Bends of a cell, and outer bends and the frame, stay a nozzle apart: d / (cos - sin).
+  // What is left of a rib after the corner cut at its node (node gap / sqrt 2) spans at least
+  // a nozzle across, so a frame piece or rib never runs alongside the cut: d / cos + gap / sqrt 2.
+  const double d = p.nozzle_mm, theta = slicer::deg_to_rad(p.angle_deg);
+  return std::max(d / (std::cos(theta) - std::sin(theta)),
+                  d / std::cos(theta) + p.node_gap_mm / std::sqrt(2.0));
+}
 
 MissingRibParams missing_rib_params_from(const nlohmann::json& v) {
   std::vector<std::string> problems;

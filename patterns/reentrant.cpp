@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "patterns/wrap_fit.h"
 #include "slicer/units.h"
 
 namespace strand::patterns {
@@ -21,7 +22,10 @@ namespace {
 
 class BandBuilder {
  public:
-  BandBuilder(const ReentrantParams& p, const ReentrantGeometry& g) : p_(p), g_(g) {}
+  // `ring`: the lattice wrapped round a cylinder, where line 2 cols is line 0 again, so
+  // every line is interior.
+  BandBuilder(const ReentrantParams& p, const ReentrantGeometry& g, bool ring)
+      : p_(p), g_(g), ring_(ring) {}
 
   // Points of band k from the bottom row boundary to the top one.
   std::vector<Vec2> band(int k) const {
@@ -50,7 +54,7 @@ class BandBuilder {
   // Where band k's copy of the vertical rib on line j sits, relative to the line: half a
   // nozzle towards the band on interior lines, on the line itself at the two outer lines.
   double copy_offset(int k, int j) const {
-    if (j == 0 || j == g_.bands) return 0.0;
+    if (!ring_ && (j == 0 || j == g_.bands)) return 0.0;
     return j == k ? p_.nozzle_mm / 2 : -p_.nozzle_mm / 2;
   }
   // The point of rib a-b that lies `offset` (signed, along x) from a (or from b).
@@ -63,11 +67,13 @@ class BandBuilder {
 
   const ReentrantParams& p_;
   const ReentrantGeometry& g_;
+  bool ring_ = false;
 };
 
-// The serpentine: even bands up, odd bands down; neighbours share their joining tip.
-slicer::Stroke serpentine(const ReentrantParams& p, const ReentrantGeometry& g) {
-  const BandBuilder builder(p, g);
+// The serpentine: even bands up, odd bands down; neighbours share their joining tip. On a
+// ring the last band comes down to the first band's start one period on: a closed strand.
+slicer::Stroke serpentine(const ReentrantParams& p, const ReentrantGeometry& g, bool ring = false) {
+  const BandBuilder builder(p, g, ring);
   slicer::Stroke s;
   bool first = true;
   for (int k = 0; k < g.bands; ++k) {
@@ -143,18 +149,57 @@ nlohmann::json reentrant_report(const ReentrantParams& p, const ReentrantGeometr
   };
 }
 
-}  // namespace
-
-slicer::Toolpath generate_reentrant(const ReentrantParams& p) {
-  const ReentrantGeometry g = reentrant_geometry(p);
-  const slicer::Stroke forward = serpentine(p, g);
+// Layers alternate direction, so each starts where the previous one ended.
+slicer::Toolpath stacked(const ReentrantParams& p, const slicer::Stroke& forward) {
   const slicer::Stroke backward = slicer::reversed(forward);
   slicer::Toolpath t;
   t.generator = "reentrant";
   for (int k = 0; k < p.layers; ++k) {
     t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, {k % 2 == 0 ? forward : backward}});
   }
+  return t;
+}
+
+// Moves a stroke along y so its points' extent is centred on y = 0; returns that extent.
+double centre_in_y(slicer::Stroke& s) {
+  double lo = s.start_mm.y(), hi = lo;
+  for (const auto& seg : s.segments) lo = std::min(lo, seg.end_mm.y()), hi = std::max(hi, seg.end_mm.y());
+  const Vec2 shift(0.0, -(lo + hi) / 2);
+  s.start_mm += shift;
+  for (auto& seg : s.segments) seg.end_mm += shift;
+  return hi - lo;
+}
+
+}  // namespace
+
+slicer::Toolpath generate_reentrant(const ReentrantParams& p) {
+  const ReentrantGeometry g = reentrant_geometry(p);
+  const slicer::Stroke forward = serpentine(p, g);
+  slicer::Toolpath t = stacked(p, forward);
   t.derived = reentrant_report(p, g, forward);
+  return t;
+}
+
+slicer::Toolpath generate_reentrant_wrapped(const ReentrantParams& given, double period_mm) {
+  ReentrantParams p = given;
+  const double d = p.nozzle_mm;
+  WrapRule rule{2, 1, 500, 4 * d, "2 columns of bands each, so bands have distinct neighbours"};
+  rule.max_cell_mm = (p.cell_height_mm - d) / std::tan(slicer::deg_to_rad(p.angle_deg));
+  const WrapFit fit = fit_around("reentrant", period_mm, p.cell_width_mm, rule);
+  p.cell_width_mm = fit.cell_mm;
+  p.cols = fit.cells;
+  ReentrantGeometry g = reentrant_geometry(p);
+  slicer::Stroke forward = serpentine(p, g, true);
+  g.width_mm = period_mm;
+  g.depth_mm = centre_in_y(forward) + d;  // every line interior: both end rows are clipped
+  g.band_gap_mm = p.cell_width_mm / 2 - d;  // no outer lines: every band's ribs are copies
+  slicer::Toolpath t = stacked(p, forward);
+  t.derived = reentrant_report(p, g, forward);
+  t.derived["strands_why"] =
+      "bands between neighbouring rib lines join at the free tips of the end rows, the last "
+      "band back to the first across the seam; every vertical rib gets one pass per band side "
+      "by side: one closed strand";
+  add_wrap_report(t.derived, fit, "cell width (cell height and angle kept)");
   return t;
 }
 

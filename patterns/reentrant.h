@@ -50,6 +50,12 @@ ReentrantGeometry reentrant_geometry(const ReentrantParams& p);
 // Layers centred on (0, 0); layer k at z = (k + 1) * layer height. Odd layers run the
 // serpentine backwards, so each layer starts where the previous one ended.
 slicer::Toolpath generate_reentrant(const ReentrantParams& p);
+// `--wrap full` round a circumference `period_mm` (x, periodic): a whole number of cells
+// round it (at least 2; the cell width adjusted to fit between 4 nozzles and the width at
+// which the tips would close, cell height and angle kept), cols ignored. Every rib line is
+// interior, so every vertical rib is laid twice side by side; one closed strand per layer,
+// odd layers reversed.
+slicer::Toolpath generate_reentrant_wrapped(const ReentrantParams& p, double period_mm);
 
 const slicer::ParamTable& reentrant_table();
 ReentrantParams reentrant_params_from(const nlohmann::json& values);

@@ -26,24 +26,39 @@ void refuse_oversized(const std::string& name, int layers, std::size_t segments)
                    std::to_string(kMaxToolpathSegments) + "; use fewer layers or a smaller part");
 }
 
-// The one generate-and-record step: parameters from checked values, the design's pure
-// generator, and the values recorded in the toolpath for headers and reports. Work is
-// bounded first: two layers cost little and every further layer repeats them, so a stack
-// that would exceed kMaxToolpathSegments is refused before it is built.
-template <auto ParamsFrom, auto Generate>
-slicer::Toolpath generate_recorded(const nlohmann::json& values) {
-  auto params = ParamsFrom(values);
+// Work is bounded before a stack is built: two layers cost little and every further layer
+// repeats them, so a stack that would exceed kMaxToolpathSegments is refused first.
+template <class Params, class Make>
+slicer::Toolpath generate_bounded(const Params& params, const Make& make) {
   if (params.layers > 2) {
     auto trial = params;
     trial.layers = 2;
-    const std::size_t per_layer = segment_count(Generate(trial)) / 2 + 1;
+    const slicer::Toolpath two = make(trial);
+    const std::size_t per_layer = segment_count(two) / 2 + 1;
     const std::size_t total = per_layer * static_cast<std::size_t>(params.layers);
-    if (total > kMaxToolpathSegments) refuse_oversized(Generate(trial).generator, params.layers, total);
+    if (total > kMaxToolpathSegments) refuse_oversized(two.generator, params.layers, total);
   }
-  slicer::Toolpath t = Generate(params);
+  slicer::Toolpath t = make(params);
   if (segment_count(t) > kMaxToolpathSegments) {
     refuse_oversized(t.generator, params.layers, segment_count(t));
   }
+  return t;
+}
+
+// The one generate-and-record step: parameters from checked values, the design's pure
+// generator (bounded), and the values recorded in the toolpath for headers and reports.
+template <auto ParamsFrom, auto Generate>
+slicer::Toolpath generate_recorded(const nlohmann::json& values) {
+  slicer::Toolpath t = generate_bounded(ParamsFrom(values), [](const auto& p) { return Generate(p); });
+  t.parameters = values;
+  return t;
+}
+
+// The same for a design's periodic variant (`--wrap full`).
+template <auto ParamsFrom, auto GenerateWrapped>
+slicer::Toolpath generate_wrapped_recorded(const nlohmann::json& values, double period_mm) {
+  slicer::Toolpath t = generate_bounded(
+      ParamsFrom(values), [&](const auto& p) { return GenerateWrapped(p, period_mm); });
   t.parameters = values;
   return t;
 }
@@ -53,15 +68,20 @@ slicer::Toolpath generate_recorded(const nlohmann::json& values) {
 const std::vector<GeneratorSpec>& generators() {
   static const std::vector<GeneratorSpec> kGenerators = {
       {"scaffold", "log-pile scaffold: one serpentine per layer, rotated by --angles",
-       &scaffold_table, &generate_recorded<&scaffold_params_from, &generate_scaffold>},
+       &scaffold_table, &generate_recorded<&scaffold_params_from, &generate_scaffold>,
+       &generate_wrapped_recorded<&scaffold_params_from, &generate_scaffold_wrapped>},
       {"tetrachiral", "tetrachiral tensile specimen: one non-crossing strand per layer, grips at both ends",
-       &tetrachiral_table, &generate_recorded<&tetrachiral_params_from, &generate_tetrachiral>},
+       &tetrachiral_table, &generate_recorded<&tetrachiral_params_from, &generate_tetrachiral>,
+       &generate_wrapped_recorded<&tetrachiral_params_from, &generate_tetrachiral_wrapped>},
       {"hexachiral", "hexachiral tensile specimen: one non-crossing strand per layer, grips at both ends",
-       &hexachiral_table, &generate_recorded<&hexachiral_params_from, &generate_hexachiral>},
+       &hexachiral_table, &generate_recorded<&hexachiral_params_from, &generate_hexachiral>,
+       &generate_wrapped_recorded<&hexachiral_params_from, &generate_hexachiral_wrapped>},
       {"missing-rib", "missing-rib auxetic lattice: nodes rotated by +/- --angle, one closed strand per layer",
-       &missing_rib_table, &generate_recorded<&missing_rib_params_from, &generate_missing_rib>},
+       &missing_rib_table, &generate_recorded<&missing_rib_params_from, &generate_missing_rib>,
+       &generate_wrapped_recorded<&missing_rib_params_from, &generate_missing_rib_wrapped>},
       {"reentrant", "re-entrant honeycomb: bands joined into one serpentine strand per layer",
-       &reentrant_table, &generate_recorded<&reentrant_params_from, &generate_reentrant>},
+       &reentrant_table, &generate_recorded<&reentrant_params_from, &generate_reentrant>,
+       &generate_wrapped_recorded<&reentrant_params_from, &generate_reentrant_wrapped>},
   };
   return kGenerators;
 }

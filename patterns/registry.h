@@ -23,8 +23,12 @@ struct GeneratorSpec {
   slicer::Toolpath (*generate)(const nlohmann::json& values);
   // For `--wrap full` on a cylinder: the same design made periodic in x with period
   // `period_mm` (the circumference where u is measured), a whole number of cells around it,
-  // no border along the seam, and the strand closing across it (x beyond the period wraps).
-  // The adjusted cell size goes into Toolpath::derived. nullptr: the design cannot wrap.
+  // no border along the seam, and the strand closing across it (x beyond the period wraps;
+  // no segment spans half the period). Toolpath::derived gets wrap_period_mm, cells_around,
+  // cell_around_mm (the adjusted cell), cell_around_requested_mm and wrap_fit (a sentence);
+  // footprint_mm / size_mm start with the period. Impossible requests throw InputError
+  // "<name>.wrap = full: ..." naming the limit (docs/wrapping.md). nullptr: cannot wrap
+  // (every shipped design can).
   slicer::Toolpath (*generate_wrapped)(const nlohmann::json& values, double period_mm) = nullptr;
 };
 

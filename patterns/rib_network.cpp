@@ -16,7 +16,9 @@ int RibNetwork::add_vertex(const Vec2& p_mm) {
   return static_cast<int>(vertices_mm.size()) - 1;
 }
 
-void RibNetwork::add_edge(int a, int b, slicer::Feature feature) { edges.push_back({a, b, feature}); }
+void RibNetwork::add_edge(int a, int b, slicer::Feature feature, int wrap) {
+  edges.push_back({a, b, feature, wrap});
+}
 
 namespace {
 
@@ -27,10 +29,17 @@ struct Ends {
     const auto& e = net.edges[static_cast<std::size_t>(k / 2)];
     return k % 2 == 0 ? e.a : e.b;
   }
+  // Periods between this end's vertex and the far vertex's copy the edge reaches.
+  int shift(int k) const {
+    const int w = net.edges[static_cast<std::size_t>(k / 2)].wrap;
+    return k % 2 == 0 ? w : -w;
+  }
+  Vec2 at(int k) const { return net.vertices_mm[static_cast<std::size_t>(vertex(k))]; }
+  // The far vertex as the edge reaches it, in the frame of this end's vertex.
+  Vec2 far(int k) const { return at(k ^ 1) + Vec2(shift(k) * net.period_mm, 0.0); }
   // Direction of the edge as seen from this end's vertex.
   double angle(int k) const {
-    const Vec2 d = net.vertices_mm[static_cast<std::size_t>(vertex(k ^ 1))] -
-                   net.vertices_mm[static_cast<std::size_t>(vertex(k))];
+    const Vec2 d = far(k) - at(k);
     return std::atan2(d.y(), d.x());
   }
 };
@@ -97,33 +106,37 @@ void merge_circuits(const std::vector<std::vector<int>>& around, std::vector<int
 
 // The points a pass through vertex v puts down: v itself, or the two ends of the corner cut
 // that keeps it `gap / 2` from v, on the arriving edge then on the leaving edge.
-std::vector<Vec2> pass_points(const RibNetwork& net, const Ends& ends, int arrive, int leave, bool cut,
-                              double gap) {
-  const Vec2 v = net.vertices_mm[static_cast<std::size_t>(ends.vertex(leave))];
+std::vector<Vec2> pass_points(const Ends& ends, int arrive, int leave, bool cut, double gap) {
+  const Vec2 v = ends.at(leave);
   if (!cut) return {v};
-  const Vec2 in = (net.vertices_mm[static_cast<std::size_t>(ends.vertex(arrive ^ 1))] - v).normalized();
-  const Vec2 out = (net.vertices_mm[static_cast<std::size_t>(ends.vertex(leave ^ 1))] - v).normalized();
+  const Vec2 in = (ends.far(arrive) - v).normalized();
+  const Vec2 out = (ends.far(leave) - v).normalized();
   const double half_wedge = std::acos(std::clamp(in.dot(out), -1.0, 1.0)) / 2;
   const double along = gap / 2 / std::max(std::cos(half_wedge), 1e-3);
   return {v + along * in, v + along * out};
 }
 
-// One closed stroke along the leaving ends; corner cuts are Node segments.
+// One closed stroke along the leaving ends; corner cuts are Node segments. `periods` counts
+// how far (in periods) the strand has run past the seam, so each vertex is drawn where the
+// strand reaches it.
 template <class IsNode>
 slicer::Stroke trace(const RibNetwork& net, const Ends& ends, const std::vector<int>& leaving,
                      const IsNode& is_node, double gap) {
   const std::size_t m = leaving.size();
-  auto points_at = [&](std::size_t i) {
-    const int leave = leaving[i];
+  auto points_at = [&](std::size_t i, int periods) {
+    const int leave = leaving[i % m];
     const int arrive = leaving[(i + m - 1) % m] ^ 1;
-    return pass_points(net, ends, arrive, leave, gap > 0 && is_node(leave), gap);
+    std::vector<Vec2> pts = pass_points(ends, arrive, leave, gap > 0 && is_node(leave), gap);
+    for (Vec2& p : pts) p.x() += periods * net.period_mm;
+    return pts;
   };
   auto feature_of = [&](int end) { return net.edges[static_cast<std::size_t>(end / 2)].feature; };
-  const std::vector<Vec2> first = points_at(0);
   slicer::Stroke stroke;
-  stroke.start_mm = first.back();
+  stroke.start_mm = points_at(0, 0).back();
+  int periods = 0;
   for (std::size_t i = 1; i <= m; ++i) {
-    const std::vector<Vec2> pts = i < m ? points_at(i) : first;
+    periods += ends.shift(leaving[i - 1]);
+    const std::vector<Vec2> pts = points_at(i, periods);
     stroke.segments.push_back(slicer::line_to(pts.front(), feature_of(leaving[i - 1])));
     if (pts.size() == 2) stroke.segments.push_back(slicer::line_to(pts.back(), slicer::Feature::Node));
   }

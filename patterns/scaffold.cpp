@@ -217,24 +217,28 @@ slicer::Toolpath generate_scaffold(const ScaffoldParams& p) {
     t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, {stroke}});
     if (k < static_cast<int>(p.angles_deg.size())) per_layer.push_back(lines.ends.size());
   }
-  const double solid = inside_length * bead_area(p);
-  const double box = g.width_mm * g.depth_mm * g.height_mm;
-  t.derived = {
-      {"footprint_mm", {g.width_mm, g.depth_mm}},
-      {"filaments_per_layer", per_layer},
+  t.derived = scaffold_report(p, g, g.width_mm, per_layer, inside_length);
+  t.derived["link_clearance_mm"] = g.link_clearance_mm;
+  return t;
+}
+
+nlohmann::json scaffold_report(const ScaffoldParams& p, const ScaffoldGeometry& g, double width_mm,
+                               const nlohmann::json& filaments_per_layer, double inside_length_mm) {
+  const double box = width_mm * g.depth_mm * g.height_mm;
+  return {
+      {"footprint_mm", {width_mm, g.depth_mm}},
+      {"filaments_per_layer", filaments_per_layer},
       {"layers", p.layers},
       {"height_mm", g.height_mm},
       {"layer_height_mm", p.layer_height_mm},
       {"pitch_mm", p.pitch_mm},
       {"gap_mm", p.pitch_mm - p.nozzle_mm},
       {"overhang_mm", p.overhang_mm},
-      {"link_clearance_mm", g.link_clearance_mm},
       {"bead_area_mm2", bead_area(p)},
-      {"porosity", 1.0 - solid / box},
+      {"porosity", 1.0 - inside_length_mm * bead_area(p) / box},
       {"porosity_formula",
        "1 - (filament length inside the footprint * bead area) / (width * depth * height)"},
   };
-  return t;
 }
 
 }  // namespace strand::patterns

@@ -35,8 +35,19 @@ struct ScaffoldGeometry {
 };
 
 ScaffoldGeometry scaffold_geometry(const ScaffoldParams& p);
+// The report keys both layouts share: footprint (`width_mm` x depth), filaments per layer,
+// layer stack, pitch, gap, overhang, bead area and porosity from the filament length laid
+// inside the footprint over all layers.
+nlohmann::json scaffold_report(const ScaffoldParams& p, const ScaffoldGeometry& g, double width_mm,
+                               const nlohmann::json& filaments_per_layer, double inside_length_mm);
 // Layers centred on (0, 0); layer k at z = (k + 1) * layer height.
 slicer::Toolpath generate_scaffold(const ScaffoldParams& p);
+// `--wrap full` round a circumference `period_mm` (x, periodic; the width is ignored, the
+// depth is the length along the axis): layers at 90 deg lay a whole number of lines along
+// the axis (pitch adjusted to fit, at least 3, each at least a nozzle apart) in a serpentine
+// with U-turns beyond the ends; layers at 0 deg one helix of lead = pitch. Other angles are
+// an InputError naming scaffold.angles.
+slicer::Toolpath generate_scaffold_wrapped(const ScaffoldParams& p, double period_mm);
 
 // Parameter table (CLI flags and job keys) and the checked conversion from its values.
 const slicer::ParamTable& scaffold_table();

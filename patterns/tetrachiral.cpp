@@ -14,12 +14,26 @@ double tetrachiral_thesis_porosity(const ChiralParams& p, double r) {
   return 1.0 - (2 * l * d / std::cos(alfa) + slicer::kPi * r * (3 * h + 2 * d)) / (l * l);
 }
 
-slicer::Toolpath generate_tetrachiral(const ChiralParams& p) {
-  slicer::Toolpath t = generate_chiral(ChiralKind::Tetra, p);
+namespace {
+
+slicer::Toolpath with_thesis_porosity(slicer::Toolpath t, ChiralParams p) {
+  p.cell_mm = t.derived.value("cell_mm", p.cell_mm);
   t.derived["porosity_thesis"] =
       tetrachiral_thesis_porosity(p, t.derived.at("node_radius_mm").get<double>());
   t.derived["porosity_thesis_formula"] = "1 - (2 l d / cos(atan(2r/l)) + pi r (3h + 2d)) / l^2";
   return t;
+}
+
+}  // namespace
+
+slicer::Toolpath generate_tetrachiral(const ChiralParams& p) {
+  return with_thesis_porosity(generate_chiral(ChiralKind::Tetra, p), p);
+}
+
+slicer::Toolpath generate_tetrachiral_wrapped(const ChiralParams& p, double period_mm) {
+  const WrapFit fit = fit_around("tetrachiral", period_mm, p.cell_mm,
+                                 chiral_wrap_rule(ChiralKind::Tetra, p));
+  return with_thesis_porosity(generate_chiral_ring(ChiralKind::Tetra, p, fit), p);
 }
 
 }  // namespace strand::patterns

@@ -9,6 +9,9 @@
 namespace strand::patterns {
 
 slicer::Toolpath generate_tetrachiral(const ChiralParams& p);
+// `--wrap full`: a sleeve periodic in x with period `period_mm`, an even number of cells
+// round it (cell adjusted to fit), frame and grip bands only at the two ends.
+slicer::Toolpath generate_tetrachiral_wrapped(const ChiralParams& p, double period_mm);
 // The thesis' porosity estimate P = 1 - (2 l d / cos a + pi r (3h + 2d)) / l^2, a = atan(2r/l).
 double tetrachiral_thesis_porosity(const ChiralParams& p, double node_radius_mm);
 

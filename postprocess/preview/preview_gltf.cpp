@@ -18,6 +18,9 @@ namespace {
 
 using Lines = std::map<slicer::Feature, std::vector<float>>;  // xyz pairs per feature
 
+// Opacity of the substrate, low enough that the paths behind it stay readable.
+constexpr double kSubstrateAlpha = 0.35;
+
 // One accessor over a new buffer view: float VEC3 (positions, normals) or uint32 SCALAR
 // indices; min/max are filled for positions as glTF requires.
 template <typename T>
@@ -106,6 +109,54 @@ int material_for(tinygltf::Model& m, std::map<slicer::Feature, int>& made, slice
   return made[f] = static_cast<int>(m.materials.size()) - 1;
 }
 
+// The substrate as one translucent, double-sided mesh with smooth normals (face normals
+// averaged at shared vertices), so the path tubes show through it.
+tinygltf::Mesh substrate_mesh(tinygltf::Model& m, const slicer::TriangleMesh& t) {
+  std::vector<float> positions, normals;
+  std::vector<slicer::Vec3> sum(t.vertices_mm.size(), slicer::Vec3::Zero());
+  std::vector<std::uint32_t> indices;
+  for (const auto& tri : t.triangles) {
+    const auto& a = t.vertices_mm[static_cast<std::size_t>(tri[0])];
+    const slicer::Vec3 n = (t.vertices_mm[static_cast<std::size_t>(tri[1])] - a)
+                               .cross(t.vertices_mm[static_cast<std::size_t>(tri[2])] - a);
+    for (int k : tri) {
+      sum[static_cast<std::size_t>(k)] += n;
+      indices.push_back(static_cast<std::uint32_t>(k));
+    }
+  }
+  for (std::size_t i = 0; i < t.vertices_mm.size(); ++i) {
+    push3(positions, t.vertices_mm[i]);
+    push3(normals, sum[i].norm() > 0 ? slicer::Vec3(sum[i].normalized()) : slicer::Vec3::UnitZ());
+  }
+  tinygltf::Material mat;
+  mat.name = "substrate";
+  mat.alphaMode = "BLEND";
+  mat.doubleSided = true;
+  mat.pbrMetallicRoughness.baseColorFactor = {0.62, 0.66, 0.72, kSubstrateAlpha};
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+  m.materials.push_back(mat);
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.attributes["POSITION"] = add_accessor(m, positions, false, true);
+  prim.attributes["NORMAL"] = add_accessor(m, normals, false, false);
+  prim.indices = add_accessor(m, indices, true, false);
+  prim.material = static_cast<int>(m.materials.size()) - 1;
+  tinygltf::Mesh mesh;
+  mesh.name = "substrate";
+  mesh.primitives.push_back(prim);
+  return mesh;
+}
+
+void add_child(tinygltf::Model& m, tinygltf::Mesh mesh) {
+  m.meshes.push_back(std::move(mesh));
+  tinygltf::Node node;
+  node.name = m.meshes.back().name;
+  node.mesh = static_cast<int>(m.meshes.size()) - 1;
+  m.nodes.push_back(node);
+  m.nodes[0].children.push_back(static_cast<int>(m.nodes.size()) - 1);
+}
+
 std::map<int, Lines> lines_by_layer(const PreviewScene& s) {
   std::map<int, Lines> layers;
   for (const auto& p : s.paths) {
@@ -136,6 +187,7 @@ std::string render_glb(const PreviewScene& scene, const GlbOptions& o) {
   root.rotation = {-std::sqrt(0.5), 0.0, 0.0, std::sqrt(0.5)};  // z-up -> y-up
   m.nodes.push_back(root);
   std::map<slicer::Feature, int> materials;
+  if (!scene.substrate.triangles.empty()) add_child(m, substrate_mesh(m, scene.substrate));
   for (const auto& [layer, lines] : lines_by_layer(scene)) {
     tinygltf::Mesh mesh;
     mesh.name = "layer " + std::to_string(layer);
@@ -151,12 +203,7 @@ std::string render_glb(const PreviewScene& scene, const GlbOptions& o) {
       prim.material = material_for(m, materials, feature);
       mesh.primitives.push_back(prim);
     }
-    m.meshes.push_back(mesh);
-    tinygltf::Node node;
-    node.name = mesh.name;
-    node.mesh = static_cast<int>(m.meshes.size()) - 1;
-    m.nodes.push_back(node);
-    m.nodes[0].children.push_back(static_cast<int>(m.nodes.size()) - 1);
+    add_child(m, std::move(mesh));
   }
   tinygltf::Scene sc;
   sc.name = "Strand";

@@ -15,7 +15,9 @@ struct GlbOptions {
 };
 
 // The root node "toolpath" turns Strand's z-up millimetres into glTF's y-up metres; its
-// children are "layer N" nodes, one per layer holding deposits. Travel moves are left out.
+// children are the "substrate" node when the scene has one (a translucent, double-sided
+// mesh: alpha-blended material "substrate", smooth normals), then "layer N" nodes, one per
+// layer holding deposits. Travel moves are left out.
 std::string render_glb(const PreviewScene& scene, const GlbOptions& options = {});
 
 }  // namespace strand::post

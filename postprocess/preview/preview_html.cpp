@@ -1,105 +1,16 @@
-// The HTML preview page: scene data as inline JSON plus a small canvas viewer.
+// The HTML preview page: scene data as inline JSON in the viewer page.
 #include "postprocess/preview/preview_html.h"
 
 #include <nlohmann/json.hpp>
 
+#include <Eigen/Geometry>  // triangle normals
+
 #include "machines/gcode_format.h"
+#include "postprocess/preview/preview_html_page.h"
 
 namespace strand::post {
 
 namespace {
-
-const char* kPage = R"(<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8"><title>@TITLE@ - Strand preview</title>
-<style>
-html,body{margin:0;height:100%;font:13px sans-serif;background:#fff}
-#bar{position:fixed;top:0;left:0;right:0;padding:6px 10px;background:#f0f0f0;border-bottom:1px solid #ccc;z-index:1}
-#bar label{margin-right:14px}#legend span{display:inline-block;margin-right:10px}
-#legend i{display:inline-block;width:12px;height:12px;margin-right:3px;vertical-align:middle}
-canvas{position:absolute;top:0;left:0;cursor:grab}
-#status{color:#555;margin-left:10px}
-</style></head><body>
-<div id="bar"><b>@TITLE@</b>
-<label>layer <input id="layer" type="range" min="0" max="0" value="0"> <span id="layerText"></span></label>
-<label><input id="only" type="checkbox"> this layer only</label>
-<label><input id="travel" type="checkbox"> travel</label>
-<label>colour <select id="colour"><option value="feature">feature</option><option value="layer">layer</option></select></label>
-<button id="fit">fit</button> <span id="legend"></span> <span id="status">loading</span></div>
-<canvas id="view"></canvas>
-<script id="scene" type="application/json">@DATA@</script>
-<script>
-"use strict";
-const statusEl = document.getElementById('status');
-window.addEventListener('error', e => { statusEl.textContent = 'error: ' + e.message; });
-const scene = JSON.parse(document.getElementById('scene').textContent);
-const canvas = document.getElementById('view'), ctx = canvas.getContext('2d');
-const layerIn = document.getElementById('layer'), onlyIn = document.getElementById('only'), travelIn = document.getElementById('travel');
-const colourIn = document.getElementById('colour');
-function layerColour(l) {  // as post::layer_colour: blue (first layer) to red (last)
-  const t = nLayersAll > 1 ? l / (nLayersAll - 1) : 0, c = v => Math.round(255 * v);
-  return 'rgb(' + c(0.15 + 0.8 * t) + ',' + c(0.3 + 0.3 * (1 - Math.abs(2 * t - 1))) + ',' + c(0.95 - 0.8 * t) + ')';
-}
-function scaleBar() {  // 1, 2 or 5 x 10^k mm, about a fifth of the window
-  const target = canvas.width / view.scale / 5, p = Math.pow(10, Math.floor(Math.log10(target)));
-  const mm = [5, 2, 1].map(m => m * p).find(v => v <= target) || p, px = mm * view.scale, y = canvas.height - 20;
-  ctx.strokeStyle = '#222'; ctx.lineWidth = 2; ctx.beginPath();
-  ctx.moveTo(20, y - 6); ctx.lineTo(20, y); ctx.lineTo(20 + px, y); ctx.lineTo(20 + px, y - 6); ctx.stroke();
-  ctx.fillStyle = '#222'; ctx.font = '13px sans-serif'; ctx.fillText(mm + ' mm', 28 + px, y);
-}
-const nLayers = Math.max(1, scene.layers.length), nLayersAll = scene.layers.length;
-layerIn.max = nLayers - 1; layerIn.value = nLayers - 1;
-let view = {scale: 1, x: 0, y: 0};
-function fit() {
-  const top = document.getElementById('bar').offsetHeight, bottom = 30;  // tool bar, scale bar
-  const b = scene.bounds, w = canvas.width, h = canvas.height - top - bottom;
-  const s = Math.min(w / Math.max(b[2] - b[0], 1e-3), h / Math.max(b[3] - b[1], 1e-3)) * 0.9;
-  view = {scale: s, x: w / 2 - s * (b[0] + b[2]) / 2, y: top + h / 2 + s * (b[1] + b[3]) / 2};
-}
-function draw() {
-  const top = +layerIn.value, only = onlyIn.checked, travel = travelIn.checked;
-  ctx.fillStyle = '#fff'; ctx.fillRect(0, 0, canvas.width, canvas.height);
-  ctx.lineCap = 'round'; ctx.lineJoin = 'round';
-  let n = 0;
-  for (const p of scene.paths) {
-    if (p.l > top || (only && p.l !== top) || (p.t && !travel)) continue;
-    ctx.strokeStyle = p.t ? '#888' : (colourIn.value === 'layer' ? layerColour(p.l) : scene.colours[p.f]);
-    ctx.lineWidth = p.t ? 1 : Math.max(1, scene.width * view.scale);
-    ctx.globalAlpha = (only || p.l === top || p.t) ? 1 : 0.55;
-    ctx.beginPath();
-    for (let i = 0; i < p.p.length; i += 2) {
-      const x = view.x + view.scale * p.p[i], y = view.y - view.scale * p.p[i + 1];
-      if (i === 0) ctx.moveTo(x, y); else ctx.lineTo(x, y);
-    }
-    ctx.stroke(); n++;
-  }
-  ctx.globalAlpha = 1;
-  scaleBar();
-  const z = scene.layers.length ? scene.layers[top] : 0;
-  document.getElementById('layerText').textContent = top + ' (z ' + z + ' mm)';
-  statusEl.textContent = 'drawn: ' + n + ' paths, layers ' + (only ? top : 0) + '-' + top;
-}
-function resize() { canvas.width = window.innerWidth; canvas.height = window.innerHeight; }
-let drag = null;
-canvas.addEventListener('mousedown', e => { drag = {x: e.clientX - view.x, y: e.clientY - view.y}; });
-window.addEventListener('mouseup', () => { drag = null; });
-canvas.addEventListener('mousemove', e => { if (drag) { view.x = e.clientX - drag.x; view.y = e.clientY - drag.y; draw(); } });
-canvas.addEventListener('wheel', e => {
-  e.preventDefault();
-  const k = Math.exp(-e.deltaY * 0.0015);
-  view.x = e.clientX - k * (e.clientX - view.x); view.y = e.clientY - k * (e.clientY - view.y);
-  view.scale *= k; draw();
-}, {passive: false});
-for (const el of [layerIn, onlyIn, travelIn, colourIn]) el.addEventListener('input', draw);
-document.getElementById('fit').addEventListener('click', () => { fit(); draw(); });
-window.addEventListener('resize', () => { resize(); draw(); });
-const legend = document.getElementById('legend');
-scene.features.forEach((f, i) => {
-  const s = document.createElement('span'), sw = document.createElement('i');
-  sw.style.background = scene.colours[i]; s.appendChild(sw); s.appendChild(document.createTextNode(f)); legend.appendChild(s);
-});
-resize(); fit(); draw();
-</script></body></html>
-)";
 
 std::string escape_html(const std::string& s) {
   std::string o;
@@ -117,29 +28,76 @@ void replace_all(std::string& s, const std::string& what, const std::string& wit
   for (auto at = s.find(what); at != std::string::npos; at = s.find(what, at + with.size())) s.replace(at, what.size(), with);
 }
 
-// Numbers written with 3 decimals as raw JSON (G-code precision, stable bytes).
-std::string scene_json(const PreviewScene& s) {
-  std::string out = "{\"paths\":[";
+std::string number_list(const std::vector<double>& values) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    out += (i ? "," : "") + machines::fmt_xyz(values[i]);
+  }
+  return out + "]";
+}
+
+// Features of the deposits, in enum order: the legend and the paths' colour index.
+std::vector<slicer::Feature> features_used(const PreviewScene& s) {
   std::vector<slicer::Feature> used;
-  for (std::size_t i = 0; i < s.paths.size(); ++i) {
-    const auto& p = s.paths[i];
-    if (!p.travel && std::find(used.begin(), used.end(), p.feature) == used.end()) used.push_back(p.feature);
+  for (const auto& p : s.paths) {
+    if (!p.travel && std::find(used.begin(), used.end(), p.feature) == used.end()) {
+      used.push_back(p.feature);
+    }
   }
   std::sort(used.begin(), used.end());
+  return used;
+}
+
+// Paths as raw JSON with coordinates to 3 decimals (G-code precision, stable bytes): x, y
+// per point in a planar scene, x, y, z in a 3D one. Layer -1 (before the first layer, a
+// purge line) stays -1 so the page can leave it out of the fit.
+std::string paths_json(const PreviewScene& s, const std::vector<slicer::Feature>& used, int dim) {
+  std::string out = "[";
   for (std::size_t i = 0; i < s.paths.size(); ++i) {
     const auto& p = s.paths[i];
     const auto f = std::find(used.begin(), used.end(), p.feature) - used.begin();
-    out += std::string(i ? "," : "") + "{\"l\":" + std::to_string(std::max(p.layer, 0)) + ",\"t\":" +
-           (p.travel ? "1" : "0") + ",\"f\":" + std::to_string(p.travel ? 0 : f) + ",\"p\":[";
+    out += std::string(i ? "," : "") + "{\"l\":" + std::to_string(std::max(p.layer, -1)) +
+           ",\"t\":" + (p.travel ? "1" : "0") + ",\"f\":" + std::to_string(p.travel ? 0 : f) +
+           ",\"p\":[";
     for (std::size_t k = 0; k < p.points_mm.size(); ++k) {
-      out += (k ? "," : "") + machines::fmt_xyz(p.points_mm[k].x()) + "," + machines::fmt_xyz(p.points_mm[k].y());
+      for (int c = 0; c < dim; ++c) {
+        out += (k || c ? "," : "") + machines::fmt_xyz(p.points_mm[k][c]);
+      }
     }
     out += "]}";
   }
+  return out + "]";
+}
+
+// The substrate's vertices (3 decimals), triangles and unit normal per triangle.
+std::string substrate_json(const slicer::TriangleMesh& m) {
+  std::vector<double> v, n;
+  for (const auto& p : m.vertices_mm) v.insert(v.end(), {p.x(), p.y(), p.z()});
+  std::string t = "[";
+  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+    const auto& tri = m.triangles[i];
+    t += (i ? "," : "") + std::to_string(tri[0]) + "," + std::to_string(tri[1]) + "," +
+         std::to_string(tri[2]);
+    const slicer::Vec3 a = m.vertices_mm[static_cast<std::size_t>(tri[0])];
+    const slicer::Vec3 c = (m.vertices_mm[static_cast<std::size_t>(tri[1])] - a)
+                               .cross(m.vertices_mm[static_cast<std::size_t>(tri[2])] - a);
+    const slicer::Vec3 u = c.norm() > 0 ? slicer::Vec3(c.normalized()) : slicer::Vec3::UnitZ();
+    n.insert(n.end(), {u.x(), u.y(), u.z()});
+  }
+  return "\"substrate\":{\"v\":" + number_list(v) + ",\"t\":" + t +
+         "]},\"substrateNormals\":" + number_list(n) + ",";
+}
+
+std::string scene_json(const PreviewScene& s) {
+  const int dim = is_3d(s) ? 3 : 2;
+  const auto used = features_used(s);
+  std::vector<double> bounds;
+  for (const auto* b : {&s.min_mm, &s.max_mm}) {
+    for (int c = 0; c < dim; ++c) bounds.push_back((*b)[c]);
+  }
   nlohmann::json meta;
-  meta["layers"] = s.layer_z_mm;
-  meta["bounds"] = {s.min_mm.x(), s.min_mm.y(), s.max_mm.x(), s.max_mm.y()};
   meta["width"] = s.bead_width_mm > 0 ? s.bead_width_mm : 0.4;
+  meta["layerValue"] = s.layer_value;
   meta["features"] = nlohmann::json::array();
   meta["colours"] = nlohmann::json::array();
   for (const auto f : used) {
@@ -147,14 +105,17 @@ std::string scene_json(const PreviewScene& s) {
     meta["colours"].push_back(hex_colour(feature_colour(f)));
   }
   if (used.empty()) meta["colours"].push_back("#888888");
-  const std::string rest = meta.dump();
-  return out + "]," + rest.substr(1);
+  std::string out = "{\"dim\":" + std::to_string(dim) + ",\"paths\":" + paths_json(s, used, dim) +
+                    ",\"layers\":" + number_list(s.layer_z_mm) + ",\"bounds\":" +
+                    number_list(bounds) + ",";
+  if (!s.substrate.triangles.empty()) out += substrate_json(s.substrate);
+  return out + meta.dump().substr(1);
 }
 
 }  // namespace
 
 std::string render_html(const PreviewScene& scene, const std::string& title) {
-  std::string page = kPage;
+  std::string page = html_page_template();
   std::string data = scene_json(scene);
   replace_all(data, "</", "<\\/");  // keep the JSON from closing its script element
   replace_all(page, "@TITLE@", escape_html(title));

@@ -4,10 +4,14 @@
 #include <cairo-svg.h>
 #include <cairo.h>
 
+#include <Eigen/Geometry>  // cross products for substrate shading
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 
+#include "postprocess/preview/preview_depth.h"
 #include "slicer/input_error.h"
 #include "slicer/params.h"
 
@@ -24,8 +28,14 @@ const double kCos30 = std::sqrt(3.0) / 2.0;
 
 Vec2 project(const Vec3& p, PreviewView view) {
   if (view == PreviewView::Top) return {p.x(), -p.y()};
-  // Isometric: x to the lower right, y to the upper right, z up (screen y grows down).
-  return {(p.x() + p.y()) * kCos30, (p.y() - p.x()) * 0.5 - p.z()};
+  // Isometric: x to the lower right, y to the upper right, z up (screen y grows down); seen
+  // from (1, -1, 1), so a part is drawn as it is, not mirrored.
+  return {(p.x() + p.y()) * kCos30, (p.x() - p.y()) * 0.5 - p.z()};
+}
+
+// Distance towards the viewer in mm (larger is nearer), for drawing 3D scenes back to front.
+double nearness(const Vec3& p, PreviewView view) {
+  return view == PreviewView::Top ? p.z() : (p.x() - p.y() + p.z()) / std::sqrt(3.0);
 }
 
 struct Panel {
@@ -59,27 +69,129 @@ void fit(Panel& panel, const PreviewScene& s, const ImageOptions& o) {
 
 void set_colour(cairo_t* cr, const Rgb& c) { cairo_set_source_rgb(cr, c.r, c.g, c.b); }
 
-void draw_paths(cairo_t* cr, const Panel& panel, const PreviewScene& s, const ImageOptions& o) {
-  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+// The substrate's colour, light so the paths read on it; shaded by how squarely a triangle
+// faces the viewer.
+Rgb substrate_shade(const Vec3& normal, PreviewView view) {
+  const Vec3 towards = view == PreviewView::Top ? Vec3::UnitZ() : Vec3(1, -1, 1).normalized();
+  const double facing = std::abs(normal.normalized().dot(towards));
+  const double v = 0.80 + 0.14 * facing;
+  return {v, v, v + 0.03};
+}
+
+void set_path_style(cairo_t* cr, const PreviewPath& p, const PreviewScene& s,
+                    const ImageOptions& o, double bead_px) {
+  if (p.travel) {
+    cairo_set_source_rgba(cr, 0.45, 0.45, 0.45, 0.8);
+    cairo_set_line_width(cr, 0.75);
+    return;
+  }
+  set_colour(cr, o.colouring == PreviewColouring::Layer
+                     ? layer_colour(p.layer, static_cast<int>(s.layer_z_mm.size()))
+                     : feature_colour(p.feature));
+  cairo_set_line_width(cr, bead_px);
+}
+
+// The substrate as a light shaded solid: faces turned away first, then faces towards the
+// viewer, each group far to near (right for a convex substrate, and an open end still shows
+// the inside); each triangle filled and stroked thinly in its colour so no seam shows.
+// Returns the triangles as a depth map for hiding what lies behind them.
+DepthMap draw_substrate(cairo_t* cr, const Panel& panel, const PreviewScene& s, int width_px,
+                        int height_px) {
+  const auto& m = s.substrate;
+  std::vector<std::array<Vec2, 3>> screen;
+  std::vector<std::array<double, 3>> near;
+  std::vector<std::pair<double, std::size_t>> order;  // (facing, nearness) key, triangle
+  std::vector<Vec3> normals;
+  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+    Triangle t;
+    for (int k = 0; k < 3; ++k) t[k] = m.vertices_mm[static_cast<std::size_t>(m.triangles[i][k])];
+    screen.push_back({panel.at(t[0]), panel.at(t[1]), panel.at(t[2])});
+    near.push_back({nearness(t[0], panel.view), nearness(t[1], panel.view),
+                    nearness(t[2], panel.view)});
+    normals.push_back((t[1] - t[0]).cross(t[2] - t[0]));
+    const Vec2 e1 = screen[i][1] - screen[i][0], e2 = screen[i][2] - screen[i][0];
+    const bool towards = e1.x() * e2.y() - e1.y() * e2.x() < 0;  // ccw on screen (y down)
+    order.emplace_back((towards ? 1e12 : 0.0) + near[i][0] + near[i][1] + near[i][2], i);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-  const int layers = static_cast<int>(s.layer_z_mm.size());
+  cairo_set_line_width(cr, 0.6);
+  for (const auto& [key, i] : order) {
+    set_colour(cr, substrate_shade(normals[i], panel.view));
+    for (const Vec2& q : screen[i]) cairo_line_to(cr, q.x(), q.y());
+    cairo_close_path(cr);
+    cairo_fill_preserve(cr);
+    cairo_stroke(cr);
+  }
+  return depth_map(std::move(screen), std::move(near), width_px, height_px);
+}
+
+// Each visible path in order, as one polyline. In a 3D scene (a substrate, or paths off
+// their layer's plane) the substrate comes first and a path is cut into runs of the
+// segments whose middle is not behind it, so the far side of a sleeve is not drawn; later
+// layers lie outside earlier ones, so path order needs no depth sort.
+void draw_paths(cairo_t* cr, const Panel& panel, const PreviewScene& s, const ImageOptions& o,
+                int width_px, int height_px) {
+  const DepthMap depth =
+      is_3d(s) ? draw_substrate(cr, panel, s, width_px, height_px) : DepthMap{};
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   const double bead_px = std::max(1.0, (s.bead_width_mm > 0 ? s.bead_width_mm : 0.4) * panel.scale);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   for (const auto& p : s.paths) {
     if (!visible(p, o)) continue;
-    if (p.travel) {
-      cairo_set_source_rgba(cr, 0.45, 0.45, 0.45, 0.8);
-      cairo_set_line_width(cr, 0.75);
-    } else {
-      set_colour(cr, o.colouring == PreviewColouring::Layer ? layer_colour(p.layer, layers) : feature_colour(p.feature));
-      cairo_set_line_width(cr, bead_px);
-    }
-    const Vec2 a = panel.at(p.points_mm.front());
-    cairo_move_to(cr, a.x(), a.y());
-    for (std::size_t i = 1; i < p.points_mm.size(); ++i) {
-      const Vec2 b = panel.at(p.points_mm[i]);
+    set_path_style(cr, p, s, o, bead_px);
+    bool open = false;
+    for (std::size_t i = 0; i + 1 < p.points_mm.size(); ++i) {
+      const Vec3 mid = 0.5 * (p.points_mm[i] + p.points_mm[i + 1]);
+      if (behind(depth, panel.at(mid), nearness(mid, panel.view))) {
+        open = false;
+        continue;
+      }
+      const Vec2 a = panel.at(p.points_mm[i]), b = panel.at(p.points_mm[i + 1]);
+      if (!open) cairo_move_to(cr, a.x(), a.y());
       cairo_line_to(cr, b.x(), b.y());
+      open = true;
     }
     cairo_stroke(cr);
+  }
+}
+
+// One row of swatches at the top left: the features drawn (or the first and last layer's
+// colour), travel when drawn, and the substrate.
+void draw_legend(cairo_t* cr, const PreviewScene& s, const ImageOptions& o) {
+  std::vector<std::pair<std::string, Rgb>> keys;
+  const int layers = static_cast<int>(s.layer_z_mm.size());
+  if (o.colouring == PreviewColouring::Layer) {
+    const int first = o.layer >= 0 ? o.layer : 0, last = o.layer >= 0 ? o.layer : layers - 1;
+    keys.push_back({"layer " + std::to_string(first), layer_colour(first, layers)});
+    if (last != first) {
+      keys.push_back({"layer " + std::to_string(last), layer_colour(last, layers)});
+    }
+  } else {
+    std::vector<slicer::Feature> used;
+    for (const auto& p : s.paths) {
+      const bool known = std::find(used.begin(), used.end(), p.feature) != used.end();
+      if (!p.travel && visible(p, o) && !known) used.push_back(p.feature);
+    }
+    std::sort(used.begin(), used.end());
+    for (auto f : used) keys.push_back({slicer::to_string(f), feature_colour(f)});
+  }
+  if (o.travel) keys.push_back({"travel", {0.45, 0.45, 0.45}});
+  if (!s.substrate.triangles.empty()) keys.push_back({"substrate", {0.80, 0.80, 0.83}});
+  cairo_select_font_face(cr, "sans-serif", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, 12.0);
+  double x = kMarginPx;
+  for (const auto& [name, colour] : keys) {
+    set_colour(cr, colour);
+    cairo_rectangle(cr, x, 7, 11, 11);
+    cairo_fill(cr);
+    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+    cairo_move_to(cr, x + 15, 17);
+    cairo_show_text(cr, name.c_str());
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr, name.c_str(), &ext);
+    x += 15 + ext.x_advance + 12;
   }
 }
 
@@ -155,10 +267,15 @@ void draw(cairo_t* cr, const PreviewScene& s, const ImageOptions& o) {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   for (const auto& panel : layout(s, o)) {
-    draw_paths(cr, panel, s, o);
+    cairo_save(cr);
+    cairo_rectangle(cr, panel.x0, panel.y0, panel.w, panel.h);
+    cairo_clip(cr);
+    draw_paths(cr, panel, s, o, o.width_px, o.height_px);
     if (!o.marks.empty()) draw_marks(cr, panel, s, o);
     if (o.scale_bar) draw_caption(cr, panel, o);
+    cairo_restore(cr);
   }
+  if (o.scale_bar) draw_legend(cr, s, o);
 }
 
 void check_options(const PreviewScene& s, const ImageOptions& o) {

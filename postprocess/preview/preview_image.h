@@ -1,5 +1,7 @@
 // Raster (PNG) and vector (SVG) previews of a PreviewScene, drawn with cairo: a top view
-// and/or an isometric view, coloured by feature or by layer, with a scale bar in mm.
+// and/or an isometric view, coloured by feature or by layer, with a scale bar in mm and a
+// colour legend. A 3D scene (a substrate, or paths off their layer's plane) is drawn back to
+// front with its substrate as a light shaded solid, so the far side of a sleeve is hidden.
 #pragma once
 
 #include <string>
@@ -29,7 +31,7 @@ struct ImageOptions {
   PreviewColouring colouring = PreviewColouring::Feature;
   int layer = -1;           // -1: every layer; else only this layer (0-based, as ;LAYER:n)
   bool travel = false;      // draw travel moves as thin grey lines
-  bool scale_bar = true;    // and a caption with the view name
+  bool scale_bar = true;    // and a caption with the view name, and the colour legend
   double px_per_mm = 0.0;   // 0: fit the part into each panel
   std::vector<PreviewMark> marks;  // drawn on the visible layers, above the paths
 };

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 #include "postprocess/plan/arc_segmentation.h"
 
@@ -39,15 +40,14 @@ void grow(PreviewScene& s, const Vec3& p, bool& first) {
   s.max_mm = s.max_mm.cwiseMax(p);
 }
 
+// Deposits on layers; else every deposit; else every path.
 void compute_bounds(PreviewScene& s) {
   bool first = true;
-  for (const auto& p : s.paths) {
-    if (p.travel) continue;
-    for (const auto& q : p.points_mm) grow(s, q, first);
-  }
-  for (const auto& p : s.paths) {
-    if (!first) break;
-    for (const auto& q : p.points_mm) grow(s, q, first);
+  for (int pass = 0; pass < 3 && first; ++pass) {
+    for (const auto& p : s.paths) {
+      if ((pass < 2 && p.travel) || (pass == 0 && p.layer < 0)) continue;
+      for (const auto& q : p.points_mm) grow(s, q, first);
+    }
   }
 }
 
@@ -76,6 +76,38 @@ PreviewScene preview_scene(const slicer::MotionProgram& program, double arc_tole
   }
   compute_bounds(s);
   return s;
+}
+
+PreviewScene scene_from_paths(std::vector<PreviewPath> paths, std::vector<double> layer_offsets_mm,
+                              slicer::TriangleMesh substrate, double bead_width_mm) {
+  for (const auto& p : paths) {
+    if (p.points_mm.size() < 2) {
+      throw std::invalid_argument("scene_from_paths: a path needs two points");
+    }
+    for (const auto& q : p.points_mm) {
+      if (!q.allFinite()) throw std::invalid_argument("scene_from_paths: non-finite point");
+    }
+  }
+  PreviewScene s;
+  s.paths = std::move(paths);
+  s.layer_z_mm = std::move(layer_offsets_mm);
+  s.substrate = std::move(substrate);
+  s.bead_width_mm = bead_width_mm;
+  s.layer_value = "offset";
+  compute_bounds(s);
+  return s;
+}
+
+bool is_3d(const PreviewScene& s) {
+  if (!s.substrate.triangles.empty()) return true;
+  for (const auto& p : s.paths) {
+    if (p.travel || p.layer < 0 || p.layer >= static_cast<int>(s.layer_z_mm.size())) continue;
+    const double z = s.layer_z_mm[static_cast<std::size_t>(p.layer)];
+    for (const auto& q : p.points_mm) {
+      if (std::abs(q.z() - z) > 1e-3) return true;
+    }
+  }
+  return false;
 }
 
 Rgb feature_colour(slicer::Feature f) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "slicer/motion.h"
+#include "slicer/surface.h"
 
 namespace strand::post {
 
@@ -19,18 +20,44 @@ struct PreviewPath {
   slicer::Feature feature = slicer::Feature::Infill;
   bool travel = false;
   std::vector<slicer::Vec3> points_mm;  // at least two
+
+  bool operator==(const PreviewPath&) const = default;
 };
 
 struct PreviewScene {
   std::vector<PreviewPath> paths;
-  std::vector<double> layer_z_mm;  // one per layer of the program
-  slicer::Vec3 min_mm = slicer::Vec3::Zero();  // bounds of the deposits (all paths if none)
+  std::vector<double> layer_z_mm;  // one per layer: its z, or on a substrate its offset
+  // Bounds of the part: deposits on layers (not a purge line drawn before the first layer,
+  // nor travels); all deposits when none is on a layer, all paths when there is no deposit.
+  slicer::Vec3 min_mm = slicer::Vec3::Zero();
   slicer::Vec3 max_mm = slicer::Vec3::Zero();
   double bead_width_mm = 0.0;  // widest deposit (0 when the file gives no ;WIDTH:)
+  // The substrate the paths lie on (a cylinder, a mesh patch) in the paths' frame, drawn
+  // translucent under them; empty for planar files.
+  slicer::TriangleMesh substrate;
+  // What layer_z_mm holds, for labels: "z" (planar heights) or "offset" (the nozzle's
+  // distance from a substrate).
+  std::string layer_value = "z";
+
+  bool operator==(const PreviewScene&) const = default;
 };
 
 // Arcs become chords within `arc_tolerance_mm`.
 PreviewScene preview_scene(const slicer::MotionProgram& program, double arc_tolerance_mm);
+
+// A scene from paths already in 3D, for programs that are not planar G-code (pose CSVs and
+// rotary G-code mapped onto their substrate, toolpaths mapped through a Surface):
+// `paths` with their layer (0-based, -1 before the first), feature and travel flag;
+// `layer_offsets_mm` one per layer, the nozzle's offset from the substrate; `substrate` the
+// substrate's triangles in the paths' frame (Surface::preview_mesh); `bead_width_mm` the
+// bead drawn. Bounds as preview_scene computes them; layer_value "offset".
+// Throws std::invalid_argument for a path with fewer than two points or a non-finite point.
+PreviewScene scene_from_paths(std::vector<PreviewPath> paths, std::vector<double> layer_offsets_mm,
+                              slicer::TriangleMesh substrate, double bead_width_mm);
+
+// True when the scene needs a 3D view: it has a substrate, or a deposit leaves its layer's
+// plane (z of the layer) by more than 0.001 mm.
+bool is_3d(const PreviewScene& scene);
 
 struct Rgb {
   double r = 0, g = 0, b = 0;  // 0..1

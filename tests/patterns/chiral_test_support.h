@@ -12,9 +12,12 @@
 #include "postprocess/inspect/crossings.h"
 #include "postprocess/plan/estimate.h"
 #include "postprocess/inspect/gcode_parser.h"
+#include "patterns/registry.h"
 #include "postprocess/plan/produce.h"
+#include "slicer/input_error.h"
 #include "slicer/params.h"
 #include "tests/support/gcode_view.h"
+#include "tests/support/wrap_checks.h"
 
 namespace strand::patterns::chiral_testing {
 
@@ -72,6 +75,43 @@ inline void expect_sound(const Emitted& e) {
   const double d = e.toolpath.parameters.at("nozzle").get<double>();
   for (int k = 0; k < 2; ++k)
     EXPECT_NEAR(hi[k] - lo[k] + d, size[k].get<double>(), 0.01) << "axis " << k;
+}
+
+// A random `--wrap full` case: random_params plus a circumference of 2 to 12 cells (so some
+// fit only after rounding down, a few not at all). Returns {values, period_mm}.
+inline std::pair<nlohmann::json, double> random_wrap(std::mt19937& rng,
+                                                     double (*min_cell)(const nlohmann::json&)) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  nlohmann::json p = random_params(rng, min_cell);
+  p["rows"] = 2 + static_cast<int>(rng() % 4);
+  return {p, p["cell"].get<double>() * (2.0 + 10.0 * unit(rng))};
+}
+
+// Thirty random sleeves of chiral generator `name`: each is sound on the cylinder with a
+// multiple of `step` cells round it, each cell at least the smallest valid one; where the
+// circumference is under `min_cells` smallest cells, an InputError instead. At least 20 made.
+inline void expect_random_sleeves(const char* name, double (*min_cell)(const nlohmann::json&),
+                                  int min_cells, int step, unsigned seed) {
+  const auto* g = find_generator(name);
+  std::mt19937 rng(seed);
+  int made = 0;
+  for (int i = 0; i < 30; ++i) {
+    const auto [given, period] = random_wrap(rng, min_cell);
+    SCOPED_TRACE(given.dump() + " period " + std::to_string(period));
+    slicer::Toolpath t;
+    try {
+      t = g->generate_wrapped(slicer::resolve_params(g->table(), given), period);
+    } catch (const InputError& e) {
+      EXPECT_LT(period, min_cells * min_cell(given) + 1e-9) << e.what();
+      continue;
+    }
+    ++made;
+    testing::expect_sound_wrap(t, period);
+    EXPECT_EQ(t.derived.at("cells_around").get<int>() % step, 0);
+    EXPECT_GE(t.derived.at("cells_around").get<int>(), min_cells);
+    EXPECT_GE(t.derived.at("cell_around_mm").get<double>(), min_cell(given) - 1e-9);
+  }
+  EXPECT_GE(made, 20);
 }
 
 }  // namespace strand::patterns::chiral_testing

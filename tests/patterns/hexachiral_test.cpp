@@ -29,6 +29,41 @@ TEST(Hexachiral, ThesisSpecimenIsOneStrandWithoutCrossings) {
   chiral_testing::expect_sound(emit_hexa(kThesis));
 }
 
+slicer::Toolpath wrap_hexa(const nlohmann::json& given, double period_mm) {
+  return find_generator("hexachiral")
+      ->generate_wrapped(slicer::resolve_params(hexachiral_table(), given), period_mm);
+}
+
+TEST(HexachiralWrap, ThesisLatticeClosesRoundTheCylinderWithGripLoops) {
+  const double period = 2 * M_PI * 12.0;  // 75.4 mm: 14.2 cells of 5.3 mm -> 14 of 5.39 mm
+  const slicer::Toolpath t = wrap_hexa(kThesis, period);
+  testing::expect_sound_wrap(t, period);
+  EXPECT_EQ(t.derived.at("cells_around").get<int>(), 14);
+  EXPECT_GT(t.derived.at("filament_length_by_feature_mm").at("grip").get<double>(), 0.0);
+  auto no_grip = kThesis;
+  no_grip["grip"] = 0;
+  const slicer::Toolpath bare = wrap_hexa(no_grip, period);
+  testing::expect_sound_wrap(bare, period);
+  EXPECT_FALSE(bare.derived.at("filament_length_by_feature_mm").contains("frame"))
+      << "end rows have even degree: no frame";
+}
+
+TEST(HexachiralWrap, ThirtyRandomSleevesAreSoundOnTheCylinder) {
+  chiral_testing::expect_random_sleeves("hexachiral", &min_cell_for, 3, 1, 1102);
+}
+
+TEST(HexachiralWrap, TooSmallACircumferenceNamesWrapAndTheLimit) {
+  const double min_cell = min_cell_for(kThesis);
+  try {
+    wrap_hexa(kThesis, 3 * min_cell - 0.1);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("hexachiral.wrap = full: "), std::string::npos) << m;
+    EXPECT_NE(m.find("at least 3 cells around"), std::string::npos) << m;
+  }
+}
+
 TEST(Hexachiral, FiftyRandomValidSpecimensAreOneStrandWithoutCrossings) {
   std::mt19937 rng(5300);
   for (int i = 0; i < 50; ++i) {

@@ -20,6 +20,7 @@
 #include "slicer/units.h"
 #include "tests/support/gcode_view.h"
 #include "tests/support/lattice_checks.h"
+#include "tests/support/wrap_checks.h"
 
 namespace strand::patterns {
 namespace {
@@ -150,6 +151,65 @@ TEST(MissingRib, SampleJobHasNoCrossingAndOneStrandPerLayer) {
 
 std::string error_of(const nlohmann::json& given) {
   return testing::input_error_of(missing_rib_table(), find_generator("missing-rib")->generate, given);
+}
+
+slicer::Toolpath wrap_missing_rib(const nlohmann::json& given, double period_mm) {
+  return find_generator("missing-rib")
+      ->generate_wrapped(slicer::resolve_params(missing_rib_table(), given), period_mm);
+}
+
+TEST(MissingRibWrap, SampleLatticeClosesRoundACylinder) {
+  const double period = 2 * M_PI * 15;  // 94.25 mm: 10.03 pitches of 9.40 mm -> 10 of 9.42
+  const auto t = wrap_missing_rib(kSample, period);
+  testing::expect_sound_wrap(t, period);
+  EXPECT_EQ(t.derived.at("cells_around").get<int>(), 10);
+  EXPECT_EQ(t.derived.at("nodes").get<int>(), 5 * 10);
+  const double c = std::cos(slicer::deg_to_rad(20.0));
+  EXPECT_NEAR(t.derived.at("rib_mm").get<double>(), period / 10 / (2 * c), 1e-12)
+      << "the rib adjusted at the same angle";
+  EXPECT_NEAR(t.derived.at("footprint_mm")[0].get<double>(), period, 1e-12);
+  EXPECT_GE(testing::wrapped_min_gap(t.layers[0], period), 0.6 - 2e-3)
+      << "filaments that are not joined keep a nozzle apart, across the seam too";
+  EXPECT_GT(testing::seam_pieces(t.layers[0].strokes[0], period).size(), 2u);
+}
+
+TEST(MissingRibWrap, ThirtyRandomSleevesAreSoundAndKeepANozzleApart) {
+  std::mt19937 rng(1104);
+  std::uniform_real_distribution<double> nozzle(0.4, 0.84), angle(1.0, 40.0), stretch(1.0, 1.8),
+      around(4.0, 16.0);
+  for (int i = 0; i < 30; ++i) {
+    const double d = nozzle(rng), theta = angle(rng);
+    MissingRibParams p;
+    p.nozzle_mm = d;
+    p.angle_deg = theta;
+    p.node_gap_mm = d;
+    const double rib = std::ceil(missing_rib_min_rib_mm(p) * stretch(rng) * 100) / 100;
+    const nlohmann::json given = {{"nozzle", d}, {"rib", rib}, {"angle", theta},
+                                  {"rows", 1 + static_cast<int>(rng() % 4)}, {"layers", 2}};
+    const double period = around(rng) * 2 * rib * std::cos(slicer::deg_to_rad(theta));
+    SCOPED_TRACE(given.dump() + " period " + std::to_string(period));
+    const auto t = wrap_missing_rib(given, period);
+    testing::expect_sound_wrap(t, period);
+    EXPECT_EQ(t.derived.at("cells_around").get<int>() % 2, 0);
+    EXPECT_GE(testing::wrapped_min_gap(t.layers[0], period), d - 2e-3);
+  }
+}
+
+TEST(MissingRibWrap, TooSmallACircumferenceNamesWrapAndTheLimit) {
+  MissingRibParams p;
+  p.nozzle_mm = 0.6;
+  p.angle_deg = 20;
+  p.node_gap_mm = 0.6;
+  const double min_pitch = 2 * missing_rib_min_rib_mm(p) * std::cos(slicer::deg_to_rad(20.0));
+  EXPECT_NO_THROW(wrap_missing_rib(kSample, 4 * min_pitch + 1e-6)) << "the rib shrinks to fit";
+  try {
+    wrap_missing_rib(kSample, 4 * min_pitch - 0.01);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("missing-rib.wrap = full: "), std::string::npos) << m;
+    EXPECT_NE(m.find("at least 4 cells around (an even number"), std::string::npos) << m;
+  }
 }
 
 TEST(MissingRibParams, RibTooShortForTheNozzleNamesTheLimit) {

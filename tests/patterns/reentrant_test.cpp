@@ -20,6 +20,7 @@
 #include "slicer/units.h"
 #include "tests/support/gcode_view.h"
 #include "tests/support/lattice_checks.h"
+#include "tests/support/wrap_checks.h"
 
 namespace strand::patterns {
 namespace {
@@ -50,6 +51,63 @@ TEST(Reentrant, FiftyRandomValidHoneycombsHaveNoCrossingAndOneStrandPerLayer) {
                                   {"angle", angle_share(rng) * max_angle},      {"rows", 2 * half_rows(rng)},
                                   {"cols", cols(rng)}, {"layers", layers(rng)}};
     expect_sound(emit(given), given.dump());
+  }
+}
+
+slicer::Toolpath wrap_reentrant(const nlohmann::json& given, double period_mm) {
+  return find_generator("reentrant")
+      ->generate_wrapped(slicer::resolve_params(reentrant_table(), given), period_mm);
+}
+
+TEST(ReentrantWrap, SampleHoneycombClosesRoundACylinderAsOneStrand) {
+  const double period = 2 * M_PI * 10;  // 62.83 mm: 7.85 cells of 8 mm -> 8 of 7.85 mm
+  const auto t = wrap_reentrant(kSample, period);
+  testing::expect_sound_wrap(t, period);
+  EXPECT_EQ(t.derived.at("cells_around").get<int>(), 8);
+  EXPECT_EQ(t.derived.at("bands").get<int>(), 16);
+  EXPECT_NEAR(t.derived.at("cell_width_mm").get<double>(), period / 8, 1e-12);
+  const auto& s = t.layers[0].strokes[0];
+  EXPECT_NEAR(s.end_mm().x() - s.start_mm.x(), period, 1e-9) << "closed once round the cylinder";
+  EXPECT_NEAR(s.end_mm().y(), s.start_mm.y(), 1e-9);
+  EXPECT_GE(testing::wrapped_min_gap(t.layers[0], period), 0.6 - 2e-3);
+  const auto& fp = t.derived.at("footprint_mm");
+  EXPECT_NEAR(fp[0].get<double>(), period, 1e-12);
+}
+
+TEST(ReentrantWrap, ThirtyRandomSleevesAreSoundAndKeepANozzleApart) {
+  std::mt19937 rng(1105);
+  std::uniform_real_distribution<double> nozzle(0.4, 0.84), width_in_d(4.0, 14.0), aspect(0.5, 1.6),
+      angle_share(0.05, 0.9), around(2.0, 12.0);
+  for (int n = 0; n < 30; ++n) {
+    const double d = nozzle(rng);
+    const double w = width_in_d(rng) * d;
+    const double h = std::max(aspect(rng) * w, 1.2 * d);
+    const double max_angle = slicer::rad_to_deg(std::atan((h - d) / w));
+    const nlohmann::json given = {{"nozzle", d},     {"cell-width", w},
+                                  {"cell-height", h}, {"angle", angle_share(rng) * max_angle},
+                                  {"rows", 2 * (1 + static_cast<int>(rng() % 3))}, {"layers", 2}};
+    const double period = around(rng) * w;
+    SCOPED_TRACE(given.dump() + " period " + std::to_string(period));
+    slicer::Toolpath t;
+    try {
+      t = wrap_reentrant(given, period);
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("reentrant.wrap = full: "), std::string::npos);
+      continue;
+    }
+    testing::expect_sound_wrap(t, period);
+    EXPECT_GE(testing::wrapped_min_gap(t.layers[0], period), d - 2e-3);
+  }
+}
+
+TEST(ReentrantWrap, TooSmallACircumferenceNamesWrapAndTheLimit) {
+  try {
+    wrap_reentrant(kSample, 2 * 4 * 0.6 - 0.1);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("reentrant.wrap = full: a 4.7 mm circumference is too "
+                                         "small: at least 2 cells around"),
+              std::string::npos) << e.what();
   }
 }
 

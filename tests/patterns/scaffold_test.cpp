@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 #include <set>
 
 #include "machines/profile.h"
@@ -15,6 +16,7 @@
 #include "slicer/input_error.h"
 #include "slicer/units.h"
 #include "tests/support/gcode_view.h"
+#include "tests/support/wrap_checks.h"
 
 namespace strand::patterns {
 namespace {
@@ -172,6 +174,82 @@ TEST(ScaffoldParams, LayerHeightOutsideHalfToOneNozzleIsRejected) {
     FAIL();
   } catch (const InputError& ex) {
     EXPECT_NE(std::string(ex.what()).find("[0.42, 0.84]"), std::string::npos) << ex.what();
+  }
+}
+
+slicer::Toolpath wrap_scaffold(const nlohmann::json& given, double period_mm) {
+  return find_generator("scaffold")->generate_wrapped(slicer::resolve_params(scaffold_table(), given),
+                                                      period_mm);
+}
+
+// Each layer starts where the previous one ended, on the cylinder (x modulo the period).
+void expect_layers_join(const slicer::Toolpath& t, double period_mm) {
+  for (std::size_t k = 1; k < t.layers.size(); ++k) {
+    const slicer::Vec2 d = t.layers[k].strokes[0].start_mm - t.layers[k - 1].strokes[0].end_mm();
+    EXPECT_NEAR(std::remainder(d.x(), period_mm), 0.0, 1e-9) << "layer " << k;
+    EXPECT_NEAR(d.y(), 0.0, 1e-9) << "layer " << k;
+  }
+}
+
+TEST(ScaffoldWrap, ThesisScaffoldAsASleeve) {
+  const double period = 2 * M_PI * 20;  // 125.66 mm: 51.5 pitches of 2.44 -> 52 lines
+  const auto t = wrap_scaffold(kThesis, period);
+  testing::expect_sound_wrap(t, period);
+  expect_layers_join(t, period);
+  EXPECT_EQ(t.derived.at("axial_lines").get<int>(), 52);
+  const double half = t.derived.at("footprint_mm")[1].get<double>() / 2 + 0.84;  // + overhang
+  // layer 1 (90 deg): 52 lines along the axis from end to end, U-turns beyond the ends
+  int axial = 0;
+  for (const auto& [a, b] : testing::flat_segments(t.layers[1].strokes[0], 0.01)) {
+    if (std::abs(a.x() - b.x()) < 1e-12 && std::abs(std::abs(b.y() - a.y()) - 2 * half) < 1e-9) ++axial;
+  }
+  EXPECT_EQ(axial, 52);
+  // layer 0 (0 deg): one helix; every turn a pitch (2.44 mm) beside the last
+  const auto& helix = t.layers[0].strokes[0];
+  const int turns = t.derived.at("helix_turns").get<int>();
+  EXPECT_NEAR(helix.end_mm().x() - helix.start_mm.x(), turns * period, 1e-9);
+  EXPECT_NEAR(helix.end_mm().y() - helix.start_mm.y(), turns * 2.44, 1e-9);
+  EXPECT_EQ(turns + 1, t.derived.at("filaments_per_layer")[0].get<int>());
+}
+
+TEST(ScaffoldWrap, FortyRandomSleevesAreSoundAndEachLayerStartsWhereTheLastEnded) {
+  std::mt19937 rng(1103);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const std::vector<std::vector<double>> angle_sets = {{0, 90}, {90, 0}, {0}, {90}, {90, 90, 0}, {-90, 180}};
+  for (int i = 0; i < 40; ++i) {
+    const double d = 0.2 + 0.8 * unit(rng), pitch = d * (1.0 + 3 * unit(rng));
+    const nlohmann::json given = {{"nozzle", d},
+                                  {"pitch", pitch},
+                                  {"size", {10.0, 3 * d + 30 * unit(rng)}},
+                                  {"layers", 1 + static_cast<int>(rng() % 5)},
+                                  {"angles", angle_sets[rng() % angle_sets.size()]}};
+    const double period = pitch * (3 + 40 * unit(rng));
+    SCOPED_TRACE(given.dump() + " period " + std::to_string(period));
+    const auto t = wrap_scaffold(given, period);
+    testing::expect_sound_wrap(t, period);
+    expect_layers_join(t, period);
+    EXPECT_GE(t.derived.at("axial_line_pitch_mm").get<double>(), d - 1e-12);
+  }
+}
+
+TEST(ScaffoldWrap, ObliqueAnglesAndTooSmallACircumferenceAreInputErrors) {
+  auto oblique = kThesis;
+  oblique["angles"] = {0, 45};
+  try {
+    wrap_scaffold(oblique, 100);
+    FAIL() << "accepted 45 deg";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scaffold.angles = 0,45: with --wrap full each angle must be 0"),
+              std::string::npos) << e.what();
+  }
+  try {
+    wrap_scaffold(kThesis, 2.0);
+    FAIL() << "accepted a 2 mm circumference";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scaffold.wrap = full: a 2 mm circumference is too small: "
+                                         "at least 3 cells around (lines along the axis) of at least "
+                                         "0.84 mm"),
+              std::string::npos) << e.what();
   }
 }
 

@@ -68,6 +68,51 @@ TEST(Tetrachiral, GripsAddTheirLengthAtBothEnds) {
   chiral_testing::expect_sound(emit_tetra(no_grip));
 }
 
+slicer::Toolpath wrap_tetra(const nlohmann::json& given, double period_mm) {
+  return find_generator("tetrachiral")
+      ->generate_wrapped(slicer::resolve_params(tetrachiral_table(), given), period_mm);
+}
+
+// The sample: a tetrachiral sleeve with --wrap full on a 15 mm radius cylinder.
+TEST(TetrachiralWrap, ThesisSleeveClosesRoundTheCylinderAsOneStrand) {
+  const double period = 2 * M_PI * 15.0;  // 94.25 mm: 9.4 cells of 10 mm -> 10 of 9.42 mm
+  const slicer::Toolpath t = wrap_tetra(kThesis, period);
+  testing::expect_sound_wrap(t, period);
+  EXPECT_EQ(t.derived.at("cells_around").get<int>(), 10);
+  EXPECT_NEAR(t.derived.at("cell_mm").get<double>(), period / 10, 1e-12);
+  EXPECT_EQ(t.derived.at("cells")[0].get<int>(), 10);
+  EXPECT_NEAR(t.derived.at("size_mm")[0].get<double>(), period, 1e-9);
+  const auto pieces = testing::seam_pieces(t.layers[0].strokes[0], period);
+  EXPECT_GT(pieces.size(), 2u) << "the strand runs across the seam";
+  // as long along y as the flat specimen with the adjusted cell and the same rows and grips
+  auto flat = kThesis;
+  flat["cell"] = period / 10;
+  const auto flat_t =
+      find_generator("tetrachiral")->generate(slicer::resolve_params(tetrachiral_table(), flat));
+  EXPECT_NEAR(t.derived.at("size_mm")[1].get<double>(),
+              flat_t.derived.at("size_mm")[1].get<double>(), 1e-6);
+}
+
+TEST(TetrachiralWrap, ThirtyRandomSleevesAreSoundOnTheCylinder) {
+  chiral_testing::expect_random_sleeves("tetrachiral", &min_cell_for, 4, 2, 1101);
+}
+
+TEST(TetrachiralWrap, TooSmallACircumferenceNamesWrapAndTheLimit) {
+  const double min_cell = min_cell_for(kThesis);
+  try {
+    wrap_tetra(kThesis, 4 * min_cell - 0.1);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("tetrachiral.wrap = full: "), std::string::npos) << m;
+    EXPECT_NE(m.find("at least 4 cells around"), std::string::npos) << m;
+    EXPECT_NE(m.find(slicer::short_number(min_cell) + " mm"), std::string::npos) << m;
+  }
+  EXPECT_NO_THROW(wrap_tetra(kThesis, 4 * min_cell + 1e-6));
+  EXPECT_THROW(wrap_tetra(kThesis, 0.0), InputError);
+  EXPECT_THROW(wrap_tetra(kThesis, 1e7), InputError) << "bounded work";
+}
+
 void expect_input_error(const nlohmann::json& given, const std::string& needle) {
   try {
     find_generator("tetrachiral")->generate(slicer::resolve_params(tetrachiral_table(), given));

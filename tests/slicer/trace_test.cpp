@@ -112,7 +112,9 @@ TEST(Trace, LevelsSplitAGradientIntoNestedLayersInOrder) {
     EXPECT_NEAR(t.levels[k].threshold, 0.8 * (4 - k) / 4, 1e-12);
     ASSERT_EQ(t.levels[k].paths.size(), 1u) << k;
     EXPECT_NEAR(right_edge(t.levels[k]), want, 1.0) << k;
-    if (k > 0) EXPECT_LT(right_edge(t.levels[k]), right_edge(t.levels[k - 1]));
+    if (k > 0) {
+      EXPECT_LT(right_edge(t.levels[k]), right_edge(t.levels[k - 1]));
+    }
   }
 }
 

@@ -3,6 +3,7 @@
 
 #include <cairo.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -76,11 +77,16 @@ PngStats png_stats(const std::string& png_bytes) {
 }
 
 ColourSpot colour_spot(const std::string& png_bytes, int r, int g, int b, int tolerance) {
+  return colour_spot(png_bytes, r, g, b, tolerance, PxBox{});
+}
+
+ColourSpot colour_spot(const std::string& png_bytes, int r, int g, int b, int tolerance,
+                       const PxBox& box) {
   const Image img = decode(png_bytes);
   const auto wanted = static_cast<std::uint32_t>((r << 16) | (g << 8) | b);
   ColourSpot spot;
-  for (int y = 0; y < img.height; ++y) {
-    for (int x = 0; x < img.width; ++x) {
+  for (int y = std::max(0, box.y0); y < std::min(img.height, box.y1); ++y) {
+    for (int x = std::max(0, box.x0); x < std::min(img.width, box.x1); ++x) {
       if (difference(img.at(x, y), wanted) > tolerance) continue;
       ++spot.count;
       spot.x_px += x;

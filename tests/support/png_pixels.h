@@ -20,5 +20,11 @@ struct ColourSpot {
   double x_px = 0.0, y_px = 0.0;
 };
 ColourSpot colour_spot(const std::string& png_bytes, int r, int g, int b, int tolerance);
+// The same inside the pixel box [x0, x1) x [y0, y1) only.
+struct PxBox {
+  int x0 = 0, y0 = 0, x1 = 1 << 30, y1 = 1 << 30;
+};
+ColourSpot colour_spot(const std::string& png_bytes, int r, int g, int b, int tolerance,
+                       const PxBox& box);
 
 }  // namespace strand::testing

@@ -6,7 +6,10 @@
 
 #include <cmath>
 
+#include "patterns/registry.h"
 #include "postprocess/inspect/gcode_parser.h"
+#include "slicer/params.h"
+#include "tests/support/cylinder_scene.h"
 
 namespace strand::post {
 namespace {
@@ -26,6 +29,37 @@ tinygltf::Model load(const std::string& glb) {
                                               static_cast<unsigned int>(glb.size()));
   EXPECT_TRUE(ok) << err;
   return m;
+}
+
+TEST(PreviewGltf, SubstrateIsATranslucentNodeUnderThePathTubes) {
+  const auto* g = patterns::find_generator("tetrachiral");
+  const auto t = g->generate_wrapped(
+      slicer::resolve_params(g->table(), {{"nozzle", 0.5}, {"cell", 10}, {"rows", 2}, {"layers", 2}}),
+      2 * M_PI * 12);
+  const auto scene = strand::testing::cylinder_scene(t, 12.0, 40.0);
+  const auto m = load(render_glb(scene));
+  const auto& root = m.nodes.at(0);
+  ASSERT_EQ(root.children.size(), 3u) << "substrate + 2 layers";
+  const auto& node = m.nodes.at(static_cast<std::size_t>(root.children[0]));
+  EXPECT_EQ(node.name, "substrate");
+  const auto& prim = m.meshes.at(static_cast<std::size_t>(node.mesh)).primitives.at(0);
+  const auto& mat = m.materials.at(static_cast<std::size_t>(prim.material));
+  EXPECT_EQ(mat.alphaMode, "BLEND");
+  EXPECT_TRUE(mat.doubleSided);
+  EXPECT_LT(mat.pbrMetallicRoughness.baseColorFactor.at(3), 1.0);
+  EXPECT_GT(mat.pbrMetallicRoughness.baseColorFactor.at(3), 0.0);
+  const auto& pos = m.accessors.at(static_cast<std::size_t>(prim.attributes.at("POSITION")));
+  EXPECT_EQ(pos.count, scene.substrate.vertices_mm.size());
+  EXPECT_EQ(m.accessors.at(static_cast<std::size_t>(prim.indices)).count,
+            3 * scene.substrate.triangles.size());
+  EXPECT_NEAR(pos.maxValues.at(0), 20.0, 1e-4) << "the cylinder's end, mm";
+  for (int k : root.children) {
+    if (k == root.children[0]) continue;
+    const auto& layer = m.meshes.at(static_cast<std::size_t>(m.nodes.at(static_cast<std::size_t>(k)).mesh));
+    for (const auto& p : layer.primitives) {
+      EXPECT_EQ(m.materials.at(static_cast<std::size_t>(p.material)).alphaMode, "OPAQUE");
+    }
+  }
 }
 
 TEST(PreviewGltf, LoadsBackWithARootAndOneNodePerLayer) {

@@ -3,8 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <cmath>
+
 #include "postprocess/inspect/gcode_parser.h"
 #include "slicer/input_error.h"
+#include "tests/support/cylinder_scene.h"
 #include "tests/support/png_pixels.h"
 
 namespace strand::post {
@@ -86,6 +90,78 @@ TEST(PreviewImage, MarksCircleTheCheckedCrossingInRed) {
   EXPECT_NEAR(spot.y_px, 200.0, 1.5);
   o.layer = 1;
   EXPECT_EQ(red().count, 0) << "marks of other layers are not drawn";
+}
+
+// Byte colour of a feature, for colour_spot.
+std::array<int, 3> rgb_of(slicer::Feature f) {
+  const Rgb c = feature_colour(f);
+  auto b = [](double v) { return static_cast<int>(std::lround(v * 255)); };
+  return {b(c.r), b(c.g), b(c.b)};
+}
+
+long pixels_of(const std::string& png, slicer::Feature f, strand::testing::PxBox box = {}) {
+  const auto c = rgb_of(f);
+  return strand::testing::colour_spot(png, c[0], c[1], c[2], 30, box).count;
+}
+
+TEST(PreviewImage, LegendShowsTheFeaturesDrawnWithTheCaption) {
+  ImageOptions o = known_scale(0);  // the square sits at 100..300 px, clear of the top rows
+  const strand::testing::PxBox top_rows{0, 0, 400, 22};
+  EXPECT_EQ(pixels_of(render_png(squares(), o), slicer::Feature::Infill, top_rows), 0);
+  o.scale_bar = true;
+  const std::string png = render_png(squares(), o);
+  EXPECT_GT(pixels_of(png, slicer::Feature::Infill, top_rows), 80) << "an 11 x 11 px swatch";
+  EXPECT_EQ(pixels_of(png, slicer::Feature::Wall, top_rows), 0) << "only features drawn";
+}
+
+TEST(PreviewImage, IsometricViewIsNotMirrored) {
+  // x to the lower right, y to the upper right: a right-handed view from (1, -1, 1)
+  const char* kAxes = ";LAYER:0\n;Z:0\nG0 X0 Y0 Z0\n;WIDTH:1\n;FEATURE:wall\nG1 X20 Y0 E1\n"
+                      "G0 X0 Y0\n;FEATURE:infill\nG1 X0 Y20 E2\n";
+  ImageOptions o = known_scale(0);
+  o.view = PreviewView::Iso;
+  const std::string png = render_png(preview_scene(parse_gcode(kAxes).program, 0.01), o);
+  const auto wall = rgb_of(slicer::Feature::Wall), infill = rgb_of(slicer::Feature::Infill);
+  const auto x_axis = strand::testing::colour_spot(png, wall[0], wall[1], wall[2], 30);
+  const auto y_axis = strand::testing::colour_spot(png, infill[0], infill[1], infill[2], 30);
+  ASSERT_GT(x_axis.count, 100);
+  ASSERT_GT(y_axis.count, 100);
+  EXPECT_NEAR(x_axis.x_px, y_axis.x_px, 8.0) << "both run right by cos 30";
+  EXPECT_GT(x_axis.y_px, y_axis.y_px + 50) << "x goes down the picture, y up";
+}
+
+// One ligament on top of a 10 mm cylinder (u = 0) and one node pass under it (u = pi R).
+PreviewScene top_and_bottom() {
+  slicer::Toolpath t;
+  auto stroke = [](double u, slicer::Feature f) {
+    slicer::Stroke s;
+    s.start_mm = {u, -8};
+    s.segments = {slicer::line_to({u, 8}, f)};
+    s.width_mm = 1.0;
+    return s;
+  };
+  t.layers.push_back({0.5, 0.5, {stroke(0, slicer::Feature::Ligament), stroke(M_PI * 10, slicer::Feature::Node)}});
+  return strand::testing::cylinder_scene(t, 10.0, 30.0);
+}
+
+TEST(PreviewImage, SubstrateHidesTheFarSideOfASleeve) {
+  ImageOptions o;
+  o.width_px = 500;
+  o.height_px = 400;
+  o.scale_bar = false;  // no legend swatches in the counts
+  for (const auto view : {PreviewView::Top, PreviewView::Iso}) {
+    o.view = view;
+    PreviewScene scene = top_and_bottom();
+    const std::string png = render_png(scene, o);
+    EXPECT_GT(pixels_of(png, slicer::Feature::Ligament), 500) << "the top ligament shows";
+    EXPECT_EQ(pixels_of(png, slicer::Feature::Node), 0) << "the pass under the cylinder is hidden";
+    // the light substrate (greys 204..240, shaded by facing) covers much of the picture
+    EXPECT_GT(strand::testing::colour_spot(png, 222, 222, 230, 60).count, 50000);
+    scene.substrate = {};  // seen from above the pass lies right under the ligament
+    if (view == PreviewView::Iso) {
+      EXPECT_GT(pixels_of(render_png(scene, o), slicer::Feature::Node), 500) << "without it, it shows";
+    }
+  }
 }
 
 TEST(PreviewImage, SameSceneSameBytes) {
