@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/curved_preview.h"
 #include "postprocess/inspect/curved_files.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "postprocess/preview/preview_gltf.h"
@@ -78,9 +79,9 @@ int run(const PreviewArgs& a) {
   if (curved && a.marks)
     throw InputError("marks: only for flat G-code (a curved file is checked with strand check)");
   const post::ParsedGcode parsed = curved ? post::ParsedGcode{} : post::parse_gcode(gcode);
-  const post::PreviewScene scene = post::preview_scene(
-      curved ? post::workpiece_program(post::read_curved_samples(gcode, a.input)) : parsed.program,
-      a.arc_tolerance_mm);
+  const post::PreviewScene scene =
+      curved ? curved_scene(post::read_curved_part(gcode, a.input), a.arc_tolerance_mm)
+             : post::preview_scene(parsed.program, a.arc_tolerance_mm);
   if (scene.paths.empty()) throw InputError("input = " + a.input + ": no moves to draw (is it G-code?)");
   post::ImageOptions o = image_options(a);
   if (a.marks) {

@@ -22,11 +22,12 @@ struct CylinderSample {
   slicer::Feature feature = slicer::Feature::Infill;
 };
 
-// What a rotary file's header says: the axis (machine frame) and the substrate radius.
+// What a rotary file's header says: the axis (machine frame) and the substrate.
 struct RotaryHeader {
   slicer::Vec3 axis_dir = slicer::Vec3::UnitX();
   slicer::Vec3 axis_point_mm = slicer::Vec3::Zero();
   double radius_mm = 0.0;
+  double length_mm = 0.0;  // 0 when the header does not say
 };
 
 // True when the G-code declares a rotary axis (;ROTARY_AXIS: header comment).
@@ -37,12 +38,23 @@ RotaryHeader read_rotary_header(std::string_view text, const std::string& file);
 // The moves of a parsed rotary file on the workpiece (deposits and travels).
 std::vector<CylinderSample> rotary_samples(const ParsedGcode& parsed, const RotaryHeader& h);
 
-// A pose CSV (by its header) or rotary G-code as samples on the workpiece; InputError when
-// the text is neither.
+// A curved file back on its workpiece, with the cylinder it lies on. A rotary file names its
+// cylinder; a pose CSV does not, so its radius is read from the layers (layer k lies at
+// radius + (k + 1) h) and its length from the pattern (centred at mid-length).
+struct CurvedPart {
+  std::vector<CylinderSample> samples;
+  double radius_mm = 0.0;  // 0 when unknown (a one-layer CSV)
+  double length_mm = 0.0;
+  double bead_width_mm = 0.0;            // rotary ;WIDTH:, or a CSV's layer spacing
+  std::vector<double> layer_offsets_mm;  // per layer: deposit radius - cylinder radius
+};
+
+// A pose CSV (by its header) or rotary G-code; InputError when the text is neither.
+CurvedPart read_curved_part(std::string_view text, const std::string& file);
 std::vector<CylinderSample> read_curved_samples(std::string_view text, const std::string& file);
 
-// The samples as a program in a viewing frame: the cylinder axis along x and its u = 0 line
-// on top (+z), as the nozzle sees it at turn 0; one layer per sample layer.
-slicer::MotionProgram workpiece_program(const std::vector<CylinderSample>& samples);
+// A workpiece point in the viewing frame of previews: the cylinder axis along x and its u = 0
+// line on top (+z), as the nozzle sees it at turn 0 (a rotation: (x, y, z) -> (z, -y, x)).
+inline slicer::Vec3 viewing_frame(const slicer::Vec3& p) { return {p.z(), -p.y(), p.x()}; }
 
 }  // namespace strand::post

@@ -145,6 +145,15 @@ std::string pose_summary(const nlohmann::json& r) {
     << " mm, length " << fmt_fixed(sub.at("length_mm").get<double>(), 3) << " mm, wrap "
     << sub.at("wrap").get<std::string>() << ", arc length at "
     << sub.at("arc_length_at").get<std::string>() << "\n";
+  const auto& d = r.at("derived");
+  if (d.is_object() && d.contains("cells_around") && d.contains("cell_around_mm")) {
+    o << "  wrap           " << d.at("cells_around").get<int>() << " cells of "
+      << fmt_fixed(d.at("cell_around_mm").get<double>(), 3) << " mm around";
+    if (d.contains("cell_around_requested_mm")) {
+      o << " (asked " << fmt_fixed(d.at("cell_around_requested_mm").get<double>(), 3) << " mm)";
+    }
+    o << "\n";
+  }
   o << "  u stretch      ";
   for (const auto& l : r.at("layers")) o << fmt_fixed(l.at("u_stretch").get<double>(), 4) << " ";
   o << "(layer length per mm of pattern x)\n";
