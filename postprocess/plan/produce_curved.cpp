@@ -104,7 +104,7 @@ nlohmann::json joints_json(const machines::JointReport& j, const machines::ArmMo
     joints.push_back({{"joint", "A" + std::to_string(i + 1)},
                       {"min_deg", std::round(lo * 100) / 100},
                       {"max_deg", std::round(hi * 100) / 100},
-                      {"limit_deg", slicer::rad_to_deg(arm.limit_rad[i])}});
+                      {"limit_deg", std::round(slicer::rad_to_deg(arm.limit_rad[i]) * 100) / 100}});
     text += (i ? ", " : "") + std::string("A") + std::to_string(i + 1) + " " +
             machines::fmt_fixed(lo, 0) + ".." + machines::fmt_fixed(hi, 0);
   }
