@@ -1,0 +1,117 @@
+// `strand slice` from the outside: every pattern on a part with a hole passes
+// `strand check --machine`; bad meshes and flags exit 2 with one line and no file.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "slicer/file_io.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/mesh_shapes.h"
+
+namespace strand::testing {
+namespace {
+
+const std::string kMachine = " --machine deltawasp-2040-clay";
+
+// The bone plug of samples/meshes/: a bored cylinder.
+std::string plug_dir() {
+  const auto dir = fresh_dir("slice");
+  write_binary_stl(tube_mesh(10.0, 3.0, 6.0, 96), dir + "/plug.stl");
+  return dir;
+}
+
+struct PatternCase {
+  const char* name;
+  const char* flags;
+};
+
+class SlicePatterns : public ::testing::TestWithParam<PatternCase> {};
+
+TEST_P(SlicePatterns, EveryLayerPassesStrandCheck) {
+  const auto dir = plug_dir();
+  const auto r = run_strand(std::string("slice plug.stl ") + GetParam().flags + kMachine +
+                                " -o s.gcode --report s.json",
+                            dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("strand(s) per layer"), std::string::npos) << r.out;
+  const auto check = run_strand("check s.gcode" + kMachine, dir);
+  EXPECT_EQ(check.exit_code, 0) << check.out;
+  const auto report = nlohmann::json::parse(slurp(dir + "/s.json"));
+  for (const auto& n : report.at("derived").at("pattern_strands_per_layer")) {
+    EXPECT_LE(n.get<int>(), 4) << "one region with one hole: a few strands at most";
+  }
+  EXPECT_GT(report.at("derived").at("porosity").get<double>(), 0.0);
+  EXPECT_LT(report.at("derived").at("porosity").get<double>(), 1.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Patterns, SlicePatterns,
+    ::testing::Values(PatternCase{"scaffold", "--pattern scaffold --nozzle 0.6 --gap 1"},
+                      PatternCase{"scaffold_perimeters", "--pattern scaffold --nozzle 0.6 --gap 1 --perimeters 2"},
+                      PatternCase{"scaffold_angles", "--pattern scaffold --nozzle 0.6 --pitch 2 --angles 0,60,120"},
+                      PatternCase{"tetrachiral", "--pattern tetrachiral --nozzle 0.4 --cell 5 --node-core 1"},
+                      PatternCase{"hexachiral", "--pattern hexachiral --nozzle 0.4 --cell 5.3 --node-core 1"},
+                      PatternCase{"missing_rib", "--pattern missing-rib --nozzle 0.4 --rib 3 --angle 20"},
+                      PatternCase{"reentrant", "--pattern reentrant --nozzle 0.4 --cell-width 4 --cell-height 4"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+TEST(SliceCli, SameInputGivesIdenticalBytes) {
+  const auto dir = plug_dir();
+  for (const char* out : {"a.gcode", "b.gcode"}) {
+    ASSERT_EQ(run_strand(std::string("slice plug.stl --nozzle 0.6 --gap 1 -o ") + out, dir).exit_code, 0);
+  }
+  EXPECT_EQ(slurp(dir + "/a.gcode"), slurp(dir + "/b.gcode"));
+}
+
+TEST(SliceCli, RepairMakesAHoledMeshSlice) {
+  const auto dir = fresh_dir("slice-repair");
+  slicer::Mesh m = tube_mesh(8.0, 0.0, 4.0, 48);
+  m.triangles.pop_back();
+  write_binary_stl(m, dir + "/holed.stl");
+  const auto bad = run_strand("slice holed.stl --nozzle 0.6 --gap 1 -o h.gcode", dir);
+  expect_input_error(bad, "open mesh");
+  EXPECT_NE(bad.err.find("--repair"), std::string::npos);
+  EXPECT_FALSE(exists(dir + "/h.gcode"));
+  const auto ok = run_strand("slice holed.stl --nozzle 0.6 --gap 1 --repair -o h.gcode", dir);
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("repaired       filled holes: 1"), std::string::npos) << ok.out;
+  EXPECT_EQ(run_strand("check h.gcode" + kMachine, dir).exit_code, 0);
+}
+
+struct BadCase {
+  const char* name;
+  const char* args;
+  const char* must_mention;
+};
+
+class SliceBadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(SliceBadInput, ExitTwoOneLineNoFile) {
+  const auto dir = plug_dir();
+  write_binary_stl(box_mesh(slicer::Vec3(0.5, 20, 5)), dir + "/fin.stl");
+  slicer::write_file_atomic(dir + "/empty.stl", "");
+  const auto r = run_strand(std::string("slice ") + GetParam().args + " -o out.gcode --report out.json", dir);
+  expect_input_error(r, GetParam().must_mention);
+  EXPECT_FALSE(exists(dir + "/out.gcode"));
+  EXPECT_FALSE(exists(dir + "/out.json"));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Cases, SliceBadInput,
+    ::testing::Values(
+        BadCase{"missing_file", "nothere.stl --nozzle 0.6 --gap 1", "mesh = nothere.stl: no such file"},
+        BadCase{"empty_file", "empty.stl --nozzle 0.6 --gap 1", "mesh = empty.stl: the file is empty"},
+        BadCase{"rows", "plug.stl --pattern tetrachiral --nozzle 0.4 --cell 5 --rows 4", "tetrachiral.rows = 4: makes no sense for a sliced part"},
+        BadCase{"size", "plug.stl --nozzle 0.6 --gap 1 --size 10x10", "scaffold.size = 10,10: makes no sense"},
+        BadCase{"foreign_flag", "plug.stl --nozzle 0.6 --gap 1 --cell 5", "slice.cell: not a scaffold flag"},
+        BadCase{"pattern", "plug.stl --pattern gyroid --nozzle 0.6", "slice.pattern = gyroid: must be one of"},
+        BadCase{"too_big", "plug.stl --nozzle 0.6 --gap 1 --mesh-units cm", "deltawasp-2040-clay"},
+        BadCase{"units", "plug.stl --nozzle 0.6 --gap 1 --mesh-units ft", "slice.mesh-units = ft"},
+        BadCase{"rotate", "plug.stl --nozzle 0.6 --gap 1 --rotate 90,0", "slice.rotate = 90,0"},
+        BadCase{"thin_wall", "fin.stl --nozzle 0.84 --gap 1", "wider than the part's wall near"},
+        BadCase{"layer_height", "plug.stl --nozzle 0.6 --gap 1 --layer-height 0.1", "scaffold.layer-height = 0.1"},
+        BadCase{"perimeters", "plug.stl --nozzle 0.6 --gap 1 --perimeters 50", "slice.perimeters = 50"}),
+    [](const auto& info) { return std::string(info.param.name); });
+
+}  // namespace
+}  // namespace strand::testing
