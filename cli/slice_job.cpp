@@ -50,6 +50,31 @@ slicer::PreparedMesh load_part(const SliceSettings& s) {
   return part;
 }
 
+// Before any slicing work: the part's bounding box against the build volume (the planner
+// checks every move again at the end).
+void check_part_fits(const slicer::Mesh& mesh, const machines::MachineProfile& m) {
+  const slicer::Vec3 size = slicer::bounds(mesh).size_mm();
+  const std::string part = slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) + " x " +
+                           slicer::short_number(size.z()) + " mm";
+  const auto& v = m.volume;
+  if (v.kind == machines::KinematicsKind::Delta) {
+    double r = 0.0;  // the part frame's origin sits on the build plate's centre
+    for (const slicer::Vec3& p : mesh.vertices_mm) r = std::max(r, p.head<2>().norm());
+    r = std::ceil(r * 10.0) / 10.0;
+    if (r > v.radius_mm + slicer::kBoundsSlackMm || size.z() > v.height_mm) {
+      throw InputError("slice: the part (" + part + ", reaching " + slicer::short_number(r) +
+                       " mm from the centre) does not fit " + m.name + " (radius " +
+                       slicer::short_number(v.radius_mm) + " mm, height " + slicer::short_number(v.height_mm) + " mm)");
+    }
+    return;
+  }
+  const slicer::Vec3 room = v.max_mm - v.min_mm;
+  if ((size.array() > room.array() + slicer::kBoundsSlackMm).any()) {
+    throw InputError("slice: the part (" + part + ") does not fit " + m.name + " (" + slicer::short_number(room.x()) +
+                     " x " + slicer::short_number(room.y()) + " x " + slicer::short_number(room.z()) + " mm)");
+  }
+}
+
 nlohmann::json slice_parameters(const SliceSettings& s, const patterns::RegionPattern& p) {
   nlohmann::json j = p.values;
   if (!s.part.empty()) j["part"] = s.part;
@@ -117,6 +142,7 @@ SliceResult produce_slice(const SliceSettings& s) {
   r.part = load_part(s);
   const slicer::Box3 box = slicer::bounds(r.part.mesh);
   const slicer::Vec3 size = box.size_mm();
+  check_part_fits(r.part.mesh, machine);
   const slicer::Vec2 half(std::max(std::abs(box.min_mm.x()), std::abs(box.max_mm.x())),
                           std::max(std::abs(box.min_mm.y()), std::abs(box.max_mm.y())));
   const patterns::RegionPattern pattern = patterns::region_pattern(*g, s.pattern_values, half);

@@ -15,20 +15,28 @@ using slicer::Vec2;
 
 namespace {
 
-// The wall check: what a bead centred d/2 inside the boundary cannot reach.
-void check_walls(const Region& region, double nozzle_mm, double z_mm) {
+// Where a bead centred d/2 inside layer k's boundary cannot reach, over more than
+// 4 nozzle^2, and the layers below and above cover that place too (a wall, not the thin
+// rim at the top or bottom of a curved part): throws naming the place.
+void check_wall(const std::vector<Region>& layers, std::size_t k, double nozzle_mm, double z_mm) {
   const double r = nozzle_mm / 2.0;
+  const Region& region = layers[k];
   const Region reached = slicer::offset_region(slicer::offset_region(region, -r), r);
   for (const auto& lost : slicer::region_difference(region, reached)) {
-    if (slicer::area_mm2(lost) <= 4.0 * nozzle_mm * nozzle_mm) continue;
+    const double area = slicer::area_mm2(lost);
+    if (area <= 4.0 * nozzle_mm * nozzle_mm) continue;
+    bool wall = true;
+    for (const std::size_t j : {k - 1, k + 1}) {  // k - 1 wraps for k = 0: not a layer
+      wall = wall && j < layers.size() && slicer::area_mm2(slicer::region_intersection({lost}, layers[j])) > area / 2;
+    }
+    if (!wall) continue;
     const auto [lo, hi] = slicer::region_bounds({lost});
     const Vec2 c = (lo + hi) / 2.0;
     char where[128];
     std::snprintf(where, sizeof where, "(%.3f, %.3f, %.3f)", c.x(), c.y(), z_mm);
-    throw InputError("slice.nozzle = " + slicer::short_number(nozzle_mm) +
-                     ": wider than the part's wall near " + where + " (a " +
-                     slicer::short_number(std::min((hi - lo).x(), (hi - lo).y())) +
-                     " mm wide strip no bead can fill); use a finer nozzle or thicken the wall");
+    throw InputError("slice.nozzle = " + slicer::short_number(nozzle_mm) + ": wider than the part's wall near " +
+                     where + " (a strip of " + slicer::short_number(std::round(area * 10) / 10) +
+                     " mm2 no bead can fill); use a finer nozzle or thicken the wall");
   }
 }
 
@@ -69,11 +77,10 @@ std::vector<slicer::Stroke> ordered(std::vector<slicer::Stroke> strokes, Vec2 at
 }  // namespace
 
 LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, int perimeters,
-                     const Vec2& half, double z_mm) {
+                     const Vec2& half) {
   LayerFill out;
   out.regions = static_cast<int>(region.size());
   if (region.empty()) return out;
-  check_walls(region, p.nozzle_mm, z_mm);
   const double d = p.nozzle_mm, h = p.layer_height_mm;
   for (int k = 0; k < perimeters; ++k) {
     for (const auto& ring : slicer::rings_of(slicer::offset_region(region, -(k + 0.5) * d))) {
@@ -84,7 +91,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   std::vector<FillPiece> pieces;
   for (FillPiece& piece : clip_to_rings(rs, pattern_lines(p, layer, half))) {
     const double len = line_length(piece.line);
-    if (len < d / 2.0) continue;  // a corner grazed: not worth a bead
+    if (len < p.min_piece_mm) continue;  // a corner or a node grazed: a strand of its own otherwise
     out.pattern_length_mm += len;
     pieces.push_back(std::move(piece));
   }
@@ -102,7 +109,8 @@ slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p) {
   Vec2 at = Vec2::Zero();
   for (std::size_t k = 0; k < part.layers.size(); ++k) {
     const double z = (static_cast<double>(k) + 1.0) * p.layer_height_mm;
-    LayerFill f = fill_layer(part.layers[k], p, static_cast<int>(k), part.perimeters, part.half_extent_mm, z);
+    check_wall(part.layers, k, p.nozzle_mm, z);
+    LayerFill f = fill_layer(part.layers[k], p, static_cast<int>(k), part.perimeters, part.half_extent_mm);
     slicer::Layer layer{z, p.layer_height_mm, ordered(std::move(f.strokes), at)};
     if (!layer.strokes.empty()) at = layer.strokes.back().end_mm();
     for (const auto& s : layer.strokes) deposited += slicer::stroke_length(s);

@@ -19,10 +19,8 @@ struct LayerFill {
   double pattern_length_mm = 0.0;       // pattern pieces alone, joins excluded
 };
 
-// Throws InputError when the nozzle is wider than the part's wall somewhere in the layer
-// (an area of more than 4 nozzle^2 that no bead can reach), naming where.
 LayerFill fill_layer(const slicer::Region& region, const RegionPattern& p, int layer,
-                     int perimeters, const slicer::Vec2& half_extent_mm, double z_mm);
+                     int perimeters, const slicer::Vec2& half_extent_mm);
 
 struct PartFill {
   std::vector<slicer::Region> layers;  // layer k's region, layer k at z = (k + 1) h
@@ -32,7 +30,10 @@ struct PartFill {
 };
 
 // The part's toolpath (generator "slice"); derived: layers, regions and pattern strands per
-// layer, deposited porosity inside the part, the pattern's own porosity.
+// layer, deposited porosity inside the part, the pattern's own porosity. Throws InputError
+// when the nozzle is wider than the part's wall somewhere: more than 4 nozzle^2 of a layer
+// that no bead reaches, where the layers below and above also cover it (so the thin rim
+// at the top or bottom of a curved part is not a wall), naming where.
 slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p);
 
 }  // namespace strand::patterns

@@ -72,15 +72,24 @@ Chain reversed_chain(const Chain& c) {
 
 class Joiner {
  public:
-  Joiner(const RingSet& rs, const std::vector<FillPiece>& pieces)
-      : rs_(rs), pieces_(pieces), g_(end_graph(rs, pieces)), used_(pieces.size(), false) {}
+  // How a run grows its chains: pieces in their order or reversed; at each end the shorter
+  // ring stretch, or always the stretch forward along the ring, or always backward.
+  enum class Prefer { Shorter, Forward, Backward };
+  static constexpr int kVariants = 6;
 
-  std::vector<Chain> run() {
+  Joiner(const RingSet& rs, const std::vector<FillPiece>& pieces)
+      : rs_(rs), pieces_(pieces), g_(end_graph(rs, pieces)) {}
+
+  // Variant v: order reversed when v is odd, preference v / 2.
+  std::vector<Chain> run(int variant) {
+    used_.assign(pieces_.size(), false);
+    prefer_ = static_cast<Prefer>(variant / 2);
     std::vector<int> order(pieces_.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
       return pieces_[a].line.order < pieces_[b].line.order;
     });
+    if (variant % 2 == 1) std::reverse(order.begin(), order.end());
     std::vector<Chain> chains;
     for (int p : order) {
       if (used_[p]) continue;
@@ -91,7 +100,14 @@ class Joiner {
       grow(c);
       chains.push_back(reversed_chain(c));
     }
-    return merge(std::move(chains));
+    chains = merge(std::move(chains));
+    for (std::size_t round = 0; round < pieces_.size() && chains.size() > 1; ++round) {
+      const std::size_t before = chains.size();
+      if (!swap_once(chains)) break;
+      chains = merge(std::move(chains));
+      if (chains.size() >= before) break;
+    }
+    return chains;
   }
 
  private:
@@ -106,7 +122,8 @@ class Joiner {
         const int w = fwd ? g_.next[v] : g_.prev[v];
         if (w < 0 || used_[w / 2]) continue;
         const double gap = fwd ? g_.gap_next[v] : g_.gap_next[w];
-        if (best < 0 || gap < best_gap) best = w, forward = fwd, best_gap = gap;
+        const bool wanted = prefer_ == Prefer::Shorter ? gap < best_gap : fwd == (prefer_ == Prefer::Forward);
+        if (best < 0 || wanted) best = w, forward = fwd, best_gap = gap;
       }
       if (best < 0) return;
       used_[best / 2] = true;
@@ -152,11 +169,69 @@ class Joiner {
     return out;
   }
 
+  // One exchange that frees a mergeable end: a strand end v whose ring neighbour w sits
+  // inside another strand B, joined there to x. Dropping the stretch w-x and adding v-w
+  // keeps the count, but frees x; when x has a ring neighbour that is the end of a third
+  // strand (or of v's), the next merge joins them. Returns false when none exists.
+  bool swap_once(std::vector<Chain>& chains) {
+    std::vector<int> owner(pieces_.size() * 2, -1), at(pieces_.size() * 2, -1);
+    for (int c = 0; c < static_cast<int>(chains.size()); ++c) {
+      for (int k = 0; k < static_cast<int>(chains[c].size()); ++k) {
+        owner[head_vertex(chains[c][k])] = owner[tail_vertex(chains[c][k])] = c;
+        at[head_vertex(chains[c][k])] = at[tail_vertex(chains[c][k])] = k;
+      }
+    }
+    auto is_end = [&](int v) {
+      const Chain& c = chains[owner[v]];
+      return v == head_vertex(c.front()) || v == tail_vertex(c.back());
+    };
+    for (int a = 0; a < static_cast<int>(chains.size()); ++a) {
+      for (const int v : {head_vertex(chains[a].front()), tail_vertex(chains[a].back())}) {
+        for (const int w : {g_.next[v], g_.prev[v]}) {
+          if (w < 0 || owner[w] == a || is_end(w)) continue;
+          const int b = owner[w];
+          const int k = at[w];
+          const bool w_is_head = w == head_vertex(chains[b][k]);
+          const int x = w_is_head ? tail_vertex(chains[b][k - 1]) : head_vertex(chains[b][k + 1]);
+          bool useful = false;
+          for (const int y : {g_.next[x], g_.prev[x]}) {
+            useful = useful || (y >= 0 && y != v && y != w && is_end(y));
+          }
+          if (!useful) continue;
+          Chain b1(chains[b].begin() + (w_is_head ? k : 0), chains[b].begin() + (w_is_head ? chains[b].size() : k + 1));
+          Chain b2(chains[b].begin() + (w_is_head ? 0 : k + 1), chains[b].begin() + (w_is_head ? k : chains[b].size()));
+          Chain ca = chains[a];
+          if (head_vertex(ca.front()) == v) ca = reversed_chain(ca);
+          if (tail_vertex(b1.back()) == w) b1 = reversed_chain(b1);
+          b1.front().join_forward = g_.next[v] == w;
+          ca.insert(ca.end(), b1.begin(), b1.end());
+          chains[a] = std::move(ca);
+          chains[b] = std::move(b2);
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   const RingSet& rs_;
   const std::vector<FillPiece>& pieces_;
   EndGraph g_;
   std::vector<bool> used_;
+  Prefer prefer_ = Prefer::Shorter;
 };
+
+// Deposited length of the ring stretches a set of chains uses.
+double join_length(const EndGraph& g, const std::vector<Chain>& chains) {
+  double len = 0.0;
+  for (const Chain& c : chains) {
+    for (std::size_t k = 1; k < c.size(); ++k) {
+      const int a = tail_vertex(c[k - 1]), b = head_vertex(c[k]);
+      len += c[k].join_forward ? g.gap_next[a] : g.gap_next[b];
+    }
+  }
+  return len;
+}
 
 RingSpot spot_of(const std::vector<FillPiece>& pieces, int v) {
   return v % 2 == 0 ? pieces[v / 2].start : pieces[v / 2].end;
@@ -171,13 +246,14 @@ void walk_ring(const RingSet& rs, const RingSpot& a, const RingSpot& b, bool for
   if (gap > 0.0) {
     // Vertex indices passed: forward from a.edge + 1 to b.edge; backward from a.edge to b.edge + 1.
     int i = forward ? (a.edge + 1) % n : a.edge;
-    const int stop = forward ? (b.edge + 1) % n : b.edge;
+    // Walking backward along edge b.edge from its end vertex b.edge + 1 reaches b first.
+    const int stop = forward ? b.edge : (b.edge + 1) % n;
     const bool same_edge_ahead = forward ? (a.edge == b.edge && a.s_mm <= b.s_mm)
                                          : (a.edge == b.edge && a.s_mm >= b.s_mm);
     if (!same_edge_ahead) {
       for (int k = 0; k <= n; ++k) {
         out.push_back(ring[static_cast<std::size_t>(i)]);
-        if (forward ? i == b.edge : i == stop) break;
+        if (i == stop) break;
         i = forward ? (i + 1) % n : (i - 1 + n) % n;
       }
     }
@@ -216,8 +292,21 @@ slicer::Stroke emit(const RingSet& rs, const std::vector<FillPiece>& pieces, con
 
 std::vector<slicer::Stroke> join_pieces(const RingSet& rs, const std::vector<FillPiece>& pieces,
                                         const JoinOptions& options) {
+  // Every growth variant is tried; the fewest strands win, then the least ring deposited.
+  Joiner joiner(rs, pieces);
+  const EndGraph g = end_graph(rs, pieces);
+  std::vector<Chain> best;
+  double best_len = 0.0;
+  for (int v = 0; v < Joiner::kVariants; ++v) {
+    std::vector<Chain> chains = joiner.run(v);
+    const double len = join_length(g, chains);
+    if (v == 0 || chains.size() < best.size() || (chains.size() == best.size() && len < best_len - 1e-9)) {
+      best = std::move(chains);
+      best_len = len;
+    }
+  }
   std::vector<slicer::Stroke> out;
-  for (const Chain& c : Joiner(rs, pieces).run()) out.push_back(emit(rs, pieces, c, options));
+  for (const Chain& c : best) out.push_back(emit(rs, pieces, c, options));
   return out;
 }
 

@@ -17,10 +17,12 @@ struct JoinOptions {
   double height_mm = 0.0;  // stroke bead height
 };
 
-// Strands made of every piece once. First each strand grows piece by piece to the nearer
-// free ring neighbour of its end (pieces taken in their `order`, the scaffold's line
-// order, so convex regions come out as one serpentine); then strand ends that are ring
-// neighbours are joined, shortest stretch first. Deterministic.
+// Strands made of every piece once. First each strand grows piece by piece to a free ring
+// neighbour of its end (pieces taken in their `order`, the scaffold's line order, so
+// convex regions come out as one serpentine); then strand ends that are ring neighbours
+// are joined, shortest stretch first. Six growth variants (order either way; the nearer
+// neighbour, always forward or always backward along the ring) are tried and the fewest
+// strands kept, then the least ring deposited. Deterministic.
 std::vector<slicer::Stroke> join_pieces(const RingSet& rs, const std::vector<FillPiece>& pieces,
                                         const JoinOptions& options);
 

@@ -129,6 +129,7 @@ RegionPattern region_pattern(const GeneratorSpec& g, const nlohmann::json& given
     p.speed_mm_per_min = s.speed_mm_per_min;
     p.pitch_mm = s.pitch_mm;
     p.angles_deg = s.angles_deg;
+    p.min_piece_mm = s.nozzle_mm;
     p.porosity = 1.0 - slicer::bead_area_mm2(s.nozzle_mm, s.layer_height_mm) / (s.pitch_mm * s.layer_height_mm);
     return p;
   }
@@ -136,6 +137,7 @@ RegionPattern region_pattern(const GeneratorSpec& g, const nlohmann::json& given
   p.nozzle_mm = values.at("nozzle").get<double>();
   p.speed_mm_per_min = values.at("speed").get<double>();
   p.connector = slicer::Feature::Frame;
+  p.min_piece_mm = 4.0 * p.nozzle_mm;
   build_lattice(g, given, half, p);
   return p;
 }

@@ -23,6 +23,10 @@ struct RegionPattern {
   std::vector<double> angles_deg;        // scaffold: lay-down angle per layer (cycled)
   std::vector<PatternLine> lattice;      // lattices: one layer's strands, part frame
   slicer::Feature connector = slicer::Feature::Infill;  // boundary joins
+  // Pieces of the pattern shorter than this inside a region are left out: a scaffold line
+  // grazing a corner (1 nozzle), a lattice node or rib cut by the boundary (4 nozzles),
+  // which would each become a strand of its own, mm.
+  double min_piece_mm = 0.0;
   // Porosity of the unbounded pattern: scaffold 1 - A / (pitch h); lattices from the
   // generated layer's strand length over the central half of the lattice.
   double porosity = 0.0;

@@ -191,6 +191,10 @@ MeshCheck check_mesh(const Mesh& input) {
 PreparedMesh prepare_mesh(const Mesh& input, bool repair, const std::string& what) {
   PreparedMesh out;
   out.mesh = weld_mesh(input);
+  const Vec3 size = bounds(out.mesh).size_mm();
+  if (size.minCoeff() <= 0.0) {
+    throw InputError(what + ": flat mesh (size " + point_text(size) + " mm): nothing to fill");
+  }
   const std::size_t merged = input.vertices_mm.size() - out.mesh.vertices_mm.size();
   out.before = check_mesh(out.mesh);
   if (!out.before.ok()) {
@@ -210,13 +214,7 @@ PreparedMesh prepare_mesh(const Mesh& input, bool repair, const std::string& wha
     for (auto& t : out.mesh.triangles) std::swap(t[1], t[2]);
     out.changes.push_back("reversed inward-facing triangles");
   }
-  const Box3 b = bounds(out.mesh);
-  const Vec3 size = b.size_mm();
-  if (size.minCoeff() <= 0.0) {
-    throw InputError(what + ": flat mesh (size " + point_text(size) + " mm): nothing to fill");
-  }
-  const double volume = signed_volume_mm3(out.mesh);
-  if (!(std::abs(volume) > 1e-9 * size.prod())) {
+  if (!(std::abs(signed_volume_mm3(out.mesh)) > 1e-9 * size.prod())) {
     throw InputError(what + ": zero volume (degenerate triangles only)");
   }
   return out;

@@ -108,6 +108,13 @@ Region region_difference(const Region& a, const Region& b) {
   return execute(c, ClipperLib::ctDifference, ClipperLib::pftNonZero);
 }
 
+Region region_intersection(const Region& a, const Region& b) {
+  ClipperLib::Clipper c;
+  c.AddPaths(to_paths(a), ClipperLib::ptSubject, true);
+  c.AddPaths(to_paths(b), ClipperLib::ptClip, true);
+  return execute(c, ClipperLib::ctIntersection, ClipperLib::pftNonZero);
+}
+
 double area_mm2(const RegionPart& p) {
   double a = signed_area_mm2(p.outer);
   for (const Ring& h : p.holes) a += signed_area_mm2(h);

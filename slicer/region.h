@@ -25,6 +25,8 @@ Region region_from_contours(const std::vector<Ring>& contours);
 Region offset_region(const Region& r, double delta_mm);
 // a minus b.
 Region region_difference(const Region& a, const Region& b);
+// What a and b share.
+Region region_intersection(const Region& a, const Region& b);
 double area_mm2(const RegionPart& p);
 double area_mm2(const Region& r);
 // Every ring of the region, outers and holes, with their orientation.

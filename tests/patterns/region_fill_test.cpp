@@ -64,6 +64,7 @@ RegionPattern scaffold(double nozzle, double pitch) {
   p.layer_height_mm = 0.88 * nozzle;
   p.pitch_mm = pitch;
   p.angles_deg = {0.0, 90.0};
+  p.min_piece_mm = nozzle;
   p.porosity = 1.0 - slicer::bead_area_mm2(nozzle, p.layer_height_mm) / (pitch * p.layer_height_mm);
   return p;
 }
@@ -71,7 +72,7 @@ RegionPattern scaffold(double nozzle, double pitch) {
 TEST(RegionFill, ConvexRegionIsOneSerpentinePerLayer) {
   const slicer::Region region = slicer::region_from_contours({circle(15, 180)});
   for (int layer : {0, 1}) {
-    const LayerFill f = fill_layer(region, scaffold(0.84, 2.44), layer, 0, Vec2(15, 15), 0.7);
+    const LayerFill f = fill_layer(region, scaffold(0.84, 2.44), layer, 0, Vec2(15, 15));
     EXPECT_EQ(f.pattern_strands, 1) << layer;
     EXPECT_EQ(crossings(f.strokes), 0);
   }
@@ -79,13 +80,14 @@ TEST(RegionFill, ConvexRegionIsOneSerpentinePerLayer) {
 
 TEST(RegionFill, HoleGetsNoFilamentAndFewStrands) {
   const slicer::Region region = slicer::region_from_contours({circle(12, 180), circle(4, 90, false)});
-  const LayerFill f = fill_layer(region, scaffold(0.6, 1.6), 0, 1, Vec2(12, 12), 0.5);
+  const LayerFill f = fill_layer(region, scaffold(0.6, 1.6), 0, 1, Vec2(12, 12));
   EXPECT_EQ(crossings(f.strokes), 0);
   EXPECT_LE(f.pattern_strands, 3) << "an annulus: at most three strands";
   for (const auto& seg : segments_of(f.strokes)) {
     for (double t : {0.0, 0.5, 1.0}) {
       const Vec2 p = seg.a + t * (seg.b - seg.a);
-      EXPECT_GT(p.norm(), 4.0 + 0.3 - 1e-3) << "a bead centre inside the hole (or its half width)";
+      // The hole is a 90-gon on the 4 mm circle: its edges lie 4 cos(pi / 90) from the centre.
+      EXPECT_GT(p.norm(), 4.0 * std::cos(slicer::kPi / 90) + 0.3 - 1e-3) << "a bead inside the hole (or its half width)";
       EXPECT_LT(p.norm(), 12.0 - 0.3 + 1e-3);
     }
   }
@@ -95,7 +97,7 @@ TEST(RegionFill, LinesStayOnTheGlobalGridInEveryLayer) {
   const RegionPattern p = scaffold(0.5, 2.0);
   // Two different regions: lines along x (layer 0) sit at y = k * pitch in both.
   for (const Ring& ring : {rect(20, 13), Ring{Vec2(-3, -7.3), Vec2(9, -5), Vec2(4, 8.1)}}) {
-    const LayerFill f = fill_layer(slicer::region_from_contours({ring}), p, 0, 0, Vec2(10, 10), 0.44);
+    const LayerFill f = fill_layer(slicer::region_from_contours({ring}), p, 0, 0, Vec2(10, 10));
     for (const auto& seg : segments_of(f.strokes)) {
       if (std::abs(seg.a.y() - seg.b.y()) > 1e-9 || (seg.a - seg.b).norm() < 1.0) continue;  // joins
       const double k = seg.a.y() / p.pitch_mm;
@@ -115,7 +117,7 @@ TEST(RegionFill, ConcaveRegionsStayCrossingFreeWithFewStrands) {
   }
   for (const Ring& ring : {u, comb}) {
     for (int layer : {0, 1}) {
-      const LayerFill f = fill_layer(slicer::region_from_contours({ring}), scaffold(0.6, 1.5), layer, 0, Vec2(15, 10), 0.5);
+      const LayerFill f = fill_layer(slicer::region_from_contours({ring}), scaffold(0.6, 1.5), layer, 0, Vec2(15, 10));
       EXPECT_EQ(crossings(f.strokes), 0);
       EXPECT_LE(f.pattern_strands, 6) << "one per arm at most, plus one";
       EXPECT_GE(f.pattern_strands, 1);
@@ -137,14 +139,26 @@ TEST(RegionFill, DepositedPorosityMatchesThePatternOnALargeBox) {
 }
 
 TEST(RegionFill, NozzleWiderThanAWallFailsNamingWhere) {
-  const slicer::Region thin = slicer::region_from_contours({rect(0.6, 20)});
+  PartFill part;
+  part.half_extent_mm = Vec2(5, 10);
+  const RegionPattern p = scaffold(0.84, 2.0);
+  for (int k = 0; k < 5; ++k) part.layers.push_back(slicer::region_from_contours({rect(0.6, 20)}));
   try {
-    fill_layer(thin, scaffold(0.84, 2.0), 0, 0, Vec2(1, 10), 3.5);
+    fill_part(part, p);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("wider than the part's wall near (0.000, 0.000, 3.500)"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("wider than the part's wall near (0.000, 0.000, 1.478)"), std::string::npos)
         << e.what();
   }
+}
+
+TEST(RegionFill, ThinRimAtTheTopOfACurvedPartIsNotAWall) {
+  PartFill part;  // a wide disk, then a thin ring on top (a torus' last layer)
+  part.half_extent_mm = Vec2(12, 12);
+  part.layers = {slicer::region_from_contours({circle(12, 180), circle(6, 90, false)}),
+                 slicer::region_from_contours({circle(9.3, 180), circle(8.9, 180, false)})};
+  part.volume_mm3 = 1000;
+  EXPECT_NO_THROW(fill_part(part, scaffold(0.84, 2.0)));
 }
 
 }  // namespace

@@ -34,14 +34,20 @@ TEST(Drape, DepositsFollowTheSubstrateAndTravelsClearIt) {
   const slicer::MotionProgram p = plan_draped(t, s, m, plan_options_from(t, 0.01));
   const slicer::Vec2 c = m.volume.part_center_mm;
   int deposits = 0;
+  slicer::Vec3 at = p.start_mm;
   for (const auto& mv : p.moves) {
+    const bool sideways = (mv.end_mm - at).head<2>().norm() > 1e-9;
+    if (mv.kind == slicer::MoveKind::Travel && sideways) {
+      EXPECT_GE(at.z(), 3.0 + 1.0) << "travels cross above the substrate's top plus the lift";
+      EXPECT_GE(mv.end_mm.z(), 3.0 + 1.0);
+    }
+    at = mv.end_mm;
     if (mv.kind == slicer::MoveKind::Deposit) {
       ++deposits;
       const double x = mv.end_mm.x() - c.x(), y = mv.end_mm.y() - c.y();
       const double surface = 3.0 * (1.0 - 2.0 * (x * x + y * y) / (3600.0 + 1600.0));
       EXPECT_NEAR(mv.end_mm.z() - surface, p.layers[mv.layer].z_mm, 0.01);
     }
-    if (mv.kind == slicer::MoveKind::Travel && mv.end_mm.z() > 3.0 + 1.0) EXPECT_GE(mv.end_mm.z(), 3.0 + 1.0);
   }
   EXPECT_GT(deposits, 100);
 }
