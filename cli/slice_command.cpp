@@ -1,6 +1,7 @@
 // `strand slice PART --pattern NAME [pattern flags]`: flags to SliceSettings, then the
 // slice job, files written atomically, a short summary printed.
 #include <algorithm>
+#include <cstdio>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -59,10 +60,11 @@ int run_slice(SliceArgs a) {
   }
   if (d.contains("substrate")) {
     const auto& sub = d.at("substrate");
-    std::cout << "  substrate      " << a.settings.onto << ": " << sub.at("uv_source").get<std::string>()
-              << ", 3D/uv area ratio " << slicer::short_number(sub.at("area_ratio_3d_to_uv")[0].get<double>())
-              << " to " << slicer::short_number(sub.at("area_ratio_3d_to_uv")[1].get<double>())
-              << ", conformal stretch up to " << slicer::short_number(sub.at("conformal_stretch_max").get<double>()) << "\n";
+    char line[256];
+    std::snprintf(line, sizeof line, "%s, 3D/uv area ratio %.3f to %.3f, conformal stretch up to %.3f",
+                  sub.at("uv_source").get<std::string>().c_str(), sub.at("area_ratio_3d_to_uv")[0].get<double>(),
+                  sub.at("area_ratio_3d_to_uv")[1].get<double>(), sub.at("conformal_stretch_max").get<double>());
+    std::cout << "  substrate      " << a.settings.onto << ": " << line << "\n";
   }
   for (const auto& c : r.part.changes) std::cout << "  repaired       " << c << "\n";
   return 0;

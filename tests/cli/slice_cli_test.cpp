@@ -79,6 +79,38 @@ TEST(SliceCli, RepairMakesAHoledMeshSlice) {
   EXPECT_EQ(run_strand("check h.gcode" + kMachine, dir).exit_code, 0);
 }
 
+TEST(SliceCli, OntoACurvedPlateFollowsItAndPassesCheck) {
+  const auto dir = fresh_dir("slice-onto");
+  write_obj(plate_mesh(60, 40, 3, 30, 20), dir + "/plate.obj");
+  const auto r = run_strand("slice --onto plate.obj --pattern scaffold --nozzle 0.6 --gap 1 --size 40x24 --layers 2"
+                            " --machine marlin-xyz-200 -o p.gcode --report p.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("substrate      plate.obj: file UVs, 3D/uv area ratio 0.99"), std::string::npos) << r.out;
+  EXPECT_EQ(run_strand("check p.gcode --machine marlin-xyz-200", dir).exit_code, 0);
+  const auto report = nlohmann::json::parse(slurp(dir + "/p.json"));
+  EXPECT_EQ(report.at("derived").at("substrate").at("kind"), "mesh");
+  // The plate's crown drops 0.65 mm from its centre to the pattern's corners (20.3, 12.3):
+  // deposits rise and fall with it; flat layers would differ by the 0.528 mm layer only.
+  double lo = 1e9, hi = -1e9;
+  for (const std::string& line : {slurp(dir + "/p.gcode")}) {
+    std::size_t at = 0;
+    while ((at = line.find("G1 X", at)) != std::string::npos) {
+      const auto z = line.find(" Z", at), eol = line.find('\n', at);
+      if (z < eol) {
+        const double v = std::stod(line.substr(z + 2));
+        lo = std::min(lo, v), hi = std::max(hi, v);
+      }
+      at = eol;
+    }
+  }
+  EXPECT_GT(hi - lo, 0.528 + 0.3) << "deposits follow the crown";
+  EXPECT_LT(hi - lo, 0.528 + 0.7);
+  const auto steep = run_strand("slice --onto plate.obj --pattern scaffold --nozzle 0.6 --gap 1 --size 80x60 "
+                                "--layers 1 --machine marlin-xyz-200 -o q.gcode", dir);
+  expect_input_error(steep, "leaves the substrate");
+  EXPECT_FALSE(exists(dir + "/q.gcode"));
+}
+
 struct BadCase {
   const char* name;
   const char* args;
