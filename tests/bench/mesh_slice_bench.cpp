@@ -4,16 +4,19 @@
 // Side by side with PrusaSlicer: tests/bench/slice_vs_prusaslicer.sh.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
+#include <unistd.h>
+
+#include <filesystem>
 
 #include "cli/slice_job.h"
-#include "tests/support/cli_runner.h"
 #include "tests/support/mesh_shapes.h"
 
 namespace {
 
 void BM_SliceTorus100kInto200Layers(benchmark::State& state) {
   using namespace strand;
-  const std::string path = testing::fresh_dir("bench-slice") + "/torus.stl";
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("strand-bench-torus-" + std::to_string(getpid()) + ".stl")).string();
   const slicer::Mesh torus = testing::torus_mesh(45.0, 30.0, 500, 100);  // 100,000 triangles
   testing::write_binary_stl(torus, path);
   cli::SliceSettings s;
@@ -27,6 +30,7 @@ void BM_SliceTorus100kInto200Layers(benchmark::State& state) {
     bytes = r.produced.gcode.size();
     benchmark::DoNotOptimize(r.produced.gcode.data());
   }
+  std::filesystem::remove(path);
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   state.counters["triangles"] = static_cast<double>(torus.triangles.size());
