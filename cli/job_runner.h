@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "patterns/registry.h"
 #include "postprocess/plan/produce.h"
@@ -17,6 +18,7 @@ struct JobSettings {
   std::string report;  // empty: no report file
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
   bool viewer_e = false;  // also write the preview-only copy with computed E
+  std::vector<std::string> inputs;  // files the outputs must never overwrite (the job file)
 };
 
 // A job file's content, checked: {"generator", "machine", "params", "output", "report",
@@ -43,7 +45,8 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 // "out/x.gcode" -> "out/x.viewer-e.gcode": the preview-only copy beside the printable file.
 std::string viewer_output_path(const std::string& gcode_path);
 
-// produce_job, then writes the G-code (report, viewer copy) atomically; returns what was produced.
+// produce_job, then writes the G-code, viewer copy and report as one transaction (all or
+// none); returns what was produced.
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& settings);
 

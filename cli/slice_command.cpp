@@ -11,6 +11,7 @@
 #include "patterns/registry.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/params.h"
 
 namespace strand::cli {
@@ -47,9 +48,13 @@ nlohmann::json pattern_values(const SliceArgs& a) {
 int run_slice(SliceArgs a) {
   a.settings.pattern_values = pattern_values(a);
   const SliceResult r = produce_slice(a.settings);
-  const std::string report = r.produced.report.dump(2) + "\n";
-  slicer::write_file_atomic(a.settings.output, r.produced.gcode);
-  if (!a.report.empty()) slicer::write_file_atomic(a.report, report);
+  slicer::OutputFiles out;
+  for (const std::string& input : {a.settings.part, a.settings.onto}) {
+    if (!input.empty()) out.protect_input(input);
+  }
+  out.stage(a.settings.output, r.produced.gcode);
+  if (!a.report.empty()) out.stage(a.report, slicer::dump_json(r.produced.report) + "\n");
+  out.commit();
   std::cout << r.produced.summary;
   const auto& d = r.toolpath.derived;
   if (d.contains("pattern_strands_per_layer")) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/mesh_gltf.h"
 #include "slicer/units.h"
@@ -95,9 +96,9 @@ Mesh read_mesh_file(const std::string& path) {
   const auto size = fs::file_size(path, ec);
   if (ec) throw InputError("mesh = " + path + ": cannot read the file");
   if (size == 0) throw InputError("mesh = " + path + ": the file is empty");
-  if (size > kMaxMeshFileBytes) {
-    throw InputError("mesh = " + path + ": " + std::to_string(size >> 20) +
-                     " MiB; at most " + std::to_string(kMaxMeshFileBytes >> 20) + " MiB are accepted");
+  if (size > kMaxInputBytes) {
+    throw InputError("mesh = " + path + ": " + std::to_string(size >> 20) + " MiB, larger than the " +
+                     std::to_string(kMaxInputBytes >> 20) + " MiB limit");
   }
   const std::string ext = extension_of(path);
   Mesh m;

@@ -9,8 +9,8 @@
 
 namespace strand::slicer {
 
-// Work bounds checked before and after reading: no input may exhaust memory.
-inline constexpr std::size_t kMaxMeshFileBytes = std::size_t{512} << 20;
+// Triangles accepted after reading (files are bounded by kMaxInputBytes before): no input
+// may exhaust memory.
 inline constexpr std::size_t kMaxMeshTriangles = 4'000'000;
 
 // The mesh as stored in the file (file units, file frame). Throws InputError for a missing,
