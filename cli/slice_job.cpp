@@ -29,7 +29,8 @@ void check_settings(const SliceSettings& s) {
     throw InputError("slice.perimeters = " + std::to_string(s.perimeters) + ": must be in [0, 20]");
   }
   if (!(s.arc_tolerance_mm > 0.0 && s.arc_tolerance_mm <= 1.0)) {
-    throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) + ": must be in (0, 1] (mm)");
+    throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
+                     ": must be in (0, 1] (mm)");
   }
 }
 
@@ -54,8 +55,8 @@ slicer::PreparedMesh load_part(const SliceSettings& s) {
 // checks every move again at the end).
 void check_part_fits(const slicer::Mesh& mesh, const machines::MachineProfile& m) {
   const slicer::Vec3 size = slicer::bounds(mesh).size_mm();
-  const std::string part = slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) + " x " +
-                           slicer::short_number(size.z()) + " mm";
+  const std::string part = slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) +
+                           " x " + slicer::short_number(size.z()) + " mm";
   const auto& v = m.volume;
   if (v.kind == machines::KinematicsKind::Delta) {
     double r = 0.0;  // the part frame's origin sits on the build plate's centre
@@ -64,14 +65,16 @@ void check_part_fits(const slicer::Mesh& mesh, const machines::MachineProfile& m
     if (r > v.radius_mm + slicer::kBoundsSlackMm || size.z() > v.height_mm) {
       throw InputError("slice: the part (" + part + ", reaching " + slicer::short_number(r) +
                        " mm from the centre) does not fit " + m.name + " (radius " +
-                       slicer::short_number(v.radius_mm) + " mm, height " + slicer::short_number(v.height_mm) + " mm)");
+                       slicer::short_number(v.radius_mm) + " mm, height " +
+                       slicer::short_number(v.height_mm) + " mm)");
     }
     return;
   }
   const slicer::Vec3 room = v.max_mm - v.min_mm;
   if ((size.array() > room.array() + slicer::kBoundsSlackMm).any()) {
-    throw InputError("slice: the part (" + part + ") does not fit " + m.name + " (" + slicer::short_number(room.x()) +
-                     " x " + slicer::short_number(room.y()) + " x " + slicer::short_number(room.z()) + " mm)");
+    throw InputError("slice: the part (" + part + ") does not fit " + m.name + " (" +
+                     slicer::short_number(room.x()) + " x " + slicer::short_number(room.y()) +
+                     " x " + slicer::short_number(room.z()) + " mm)");
   }
 }
 
@@ -117,7 +120,8 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
                          const machines::MachineProfile& machine) {
   SliceResult r;
   r.toolpath = g.generate(slicer::resolve_params(g.table(), s.pattern_values));
-  const slicer::Mesh substrate = slicer::place_mesh(slicer::read_mesh_file(s.onto), placement_of(s));
+  const slicer::Mesh substrate =
+      slicer::place_mesh(slicer::read_mesh_file(s.onto), placement_of(s));
   const slicer::MeshSurface surface(substrate, s.onto);
   const post::PlanOptions options = post::plan_options_from(r.toolpath, s.arc_tolerance_mm);
   slicer::MotionProgram program = post::plan_draped(r.toolpath, surface, machine, options);
@@ -134,7 +138,8 @@ SliceResult produce_slice(const SliceSettings& s) {
   if (!g) throw InputError("slice.pattern = " + s.pattern + ": must be one of " + pattern_names());
   check_settings(s);
   if (s.part.empty() == s.onto.empty()) {
-    throw InputError("slice: give a part to fill or --onto SUBSTRATE to lay the pattern on, not both");
+    throw InputError(
+        "slice: give a part to fill or --onto SUBSTRATE to lay the pattern on, not both");
   }
   const machines::MachineProfile machine = machines::load_profile(s.machine);
   if (!s.onto.empty()) return produce_onto(s, *g, machine);
@@ -148,12 +153,23 @@ SliceResult produce_slice(const SliceSettings& s) {
   const patterns::RegionPattern pattern = patterns::region_pattern(*g, s.pattern_values, half);
   const double layers_exact = size.z() / pattern.layer_height_mm;
   if (layers_exact > kMaxSliceLayers) {
-    throw InputError("slice.layer-height = " + slicer::short_number(pattern.layer_height_mm) + ": the part (" +
-                     slicer::short_number(size.z()) + " mm tall) would need more than " +
-                     std::to_string(kMaxSliceLayers) + " layers");
+    throw InputError("slice.layer-height = " + slicer::short_number(pattern.layer_height_mm) +
+                     ": the part (" + slicer::short_number(size.z()) +
+                     " mm tall) would need more than " + std::to_string(kMaxSliceLayers) +
+                     " layers");
+  }
+  const int layers = std::max(1, static_cast<int>(std::lround(layers_exact)));
+  double segments = 0.0;
+  for (const auto& line : patterns::pattern_lines(pattern, 0, half))
+    segments += static_cast<double>(line.points.size());
+  if (segments * layers > kMaxSliceSegments) {
+    throw InputError("slice: " + std::to_string(layers) + " layers of " +
+                     slicer::short_number(segments) +
+                     " pattern segments each is more work than allowed (" +
+                     slicer::short_number(kMaxSliceSegments) +
+                     " segments in all); use a coarser pattern or a larger layer height");
   }
   patterns::PartFill fill;
-  const int layers = std::max(1, static_cast<int>(std::lround(layers_exact)));
   fill.layers = slicer::slice_layers(r.part.mesh, pattern.layer_height_mm, layers);
   fill.half_extent_mm = half;
   fill.volume_mm3 = slicer::signed_volume_mm3(r.part.mesh);
@@ -163,7 +179,8 @@ SliceResult produce_slice(const SliceSettings& s) {
   r.toolpath.derived["size_mm"] = {size.x(), size.y(), size.z()};
   r.toolpath.derived["mesh_triangles"] = r.part.mesh.triangles.size();
   r.toolpath.derived["mesh_repairs"] = r.part.changes;
-  r.produced = post::produce(r.toolpath, machine, post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output);
+  r.produced = post::produce(r.toolpath, machine,
+                             post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output);
   return r;
 }
 

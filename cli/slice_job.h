@@ -12,21 +12,23 @@
 
 namespace strand::cli {
 
-// Layers are bounded before any slicing work.
+// Work is bounded before any slicing: layers, and pattern segments clipped over all layers
+// (about 10 s of clipping at most).
 inline constexpr int kMaxSliceLayers = 20000;
+inline constexpr double kMaxSliceSegments = 1e8;
 
 struct SliceSettings {
-  std::string part;                      // mesh file to fill (or empty with `onto`)
-  std::string onto;                      // substrate mesh to lay the pattern on (or empty)
-  std::string pattern = "scaffold";      // generator name
+  std::string part;                  // mesh file to fill (or empty with `onto`)
+  std::string onto;                  // substrate mesh to lay the pattern on (or empty)
+  std::string pattern = "scaffold";  // generator name
   nlohmann::json pattern_values = nlohmann::json::object();  // its flags as given (JSON form)
   int perimeters = 0;
   std::string mesh_units = "mm";
   std::string place = "center";
-  std::string rotate = "0,0,0";          // X,Y,Z degrees
+  std::string rotate = "0,0,0";  // X,Y,Z degrees
   bool repair = false;
   std::string machine = "deltawasp-2040-clay";
-  std::string output = "slice.gcode";    // recorded in the report
+  std::string output = "slice.gcode";  // recorded in the report
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
 };
 

@@ -42,8 +42,8 @@ class EdgeGrid {
     }
     for (std::size_t r = 0; r < rs.rings.size(); ++r) length += rs.s_mm[r].back();
     const Vec2 size = (hi_ - lo_).cwiseMax(Vec2(1e-6, 1e-6));
-    cell_ = std::max({count ? 2.0 * length / static_cast<double>(count) : 1.0,
-                      size.maxCoeff() / 512.0, 1e-6});
+    cell_ = std::max(
+        {count ? 2.0 * length / static_cast<double>(count) : 1.0, size.maxCoeff() / 512.0, 1e-6});
     nx_ = static_cast<int>(size.x() / cell_) + 1;
     ny_ = static_cast<int>(size.y() / cell_) + 1;
     cells_.resize(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_));
@@ -114,11 +114,14 @@ std::vector<Cut> cuts_of(const RingSet& rs, EdgeGrid& grid, const Vec2& p0, cons
     const double den = slicer::cross(d, e);
     const double t = den == 0.0 ? 0.0 : std::clamp(slicer::cross(a - p0, e) / den, 0.0, 1.0);
     const double u = den == 0.0 ? 0.0 : std::clamp(slicer::cross(a - p0, d) / den, 0.0, 1.0);
-    const double s = rs.s_mm[static_cast<std::size_t>(r)][static_cast<std::size_t>(i)] + u * e.norm();
+    const double s =
+        rs.s_mm[static_cast<std::size_t>(r)][static_cast<std::size_t>(i)] + u * e.norm();
     cuts.push_back({t, {r, i, s}, p0 + t * d});
   });
   std::sort(cuts.begin(), cuts.end(), [](const Cut& x, const Cut& y) {
-    return x.t != y.t ? x.t < y.t : std::make_pair(x.spot.ring, x.spot.edge) < std::make_pair(y.spot.ring, y.spot.edge);
+    return x.t != y.t ? x.t < y.t
+                      : std::make_pair(x.spot.ring, x.spot.edge) <
+                            std::make_pair(y.spot.ring, y.spot.edge);
   });
   return cuts;
 }
@@ -129,7 +132,8 @@ bool inside(const RingSet& rs, const Vec2& p, double left_x) {
   const Vec2 far(left_x, p.y() + 0.5);  // slanted so it rarely runs along an edge
   int n = 0;
   for (const auto& ring : rs.rings) {
-    for (std::size_t i = 0; i < ring.size(); ++i) n += crosses(far, p, ring[i], ring[(i + 1) % ring.size()]);
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      n += crosses(far, p, ring[i], ring[(i + 1) % ring.size()]);
   }
   return n % 2 == 1;
 }
@@ -141,14 +145,17 @@ RingSet ring_set(const std::vector<slicer::Ring>& rings) {
   for (const auto& ring : rings) {
     if (ring.size() < 3) continue;
     std::vector<double> s{0.0};
-    for (std::size_t i = 0; i < ring.size(); ++i) s.push_back(s.back() + (ring[(i + 1) % ring.size()] - ring[i]).norm());
+    for (std::size_t i = 0; i < ring.size(); ++i)
+      s.push_back(s.back() + (ring[(i + 1) % ring.size()] - ring[i]).norm());
     rs.rings.push_back(ring);
     rs.s_mm.push_back(std::move(s));
   }
   return rs;
 }
 
-double ring_length_mm(const RingSet& rs, int ring) { return rs.s_mm[static_cast<std::size_t>(ring)].back(); }
+double ring_length_mm(const RingSet& rs, int ring) {
+  return rs.s_mm[static_cast<std::size_t>(ring)].back();
+}
 
 Vec2 point_at(const RingSet& rs, const RingSpot& spot) {
   const auto& ring = rs.rings[static_cast<std::size_t>(spot.ring)];

@@ -27,15 +27,17 @@ void check_wall(const std::vector<Region>& layers, std::size_t k, double nozzle_
     if (area <= 4.0 * nozzle_mm * nozzle_mm) continue;
     bool wall = true;
     for (const std::size_t j : {k - 1, k + 1}) {  // k - 1 wraps for k = 0: not a layer
-      wall = wall && j < layers.size() && slicer::area_mm2(slicer::region_intersection({lost}, layers[j])) > area / 2;
+      wall = wall && j < layers.size() &&
+             slicer::area_mm2(slicer::region_intersection({lost}, layers[j])) > area / 2;
     }
     if (!wall) continue;
     const auto [lo, hi] = slicer::region_bounds({lost});
     const Vec2 c = (lo + hi) / 2.0;
     char where[128];
     std::snprintf(where, sizeof where, "(%.3f, %.3f, %.3f)", c.x(), c.y(), z_mm);
-    throw InputError("slice.nozzle = " + slicer::short_number(nozzle_mm) + ": wider than the part's wall near " +
-                     where + " (a strip of " + slicer::short_number(std::round(area * 10) / 10) +
+    throw InputError("slice.nozzle = " + slicer::short_number(nozzle_mm) +
+                     ": wider than the part's wall near " + where + " (a strip of " +
+                     slicer::short_number(std::round(area * 10) / 10) +
                      " mm2 no bead can fill); use a finer nozzle or thicken the wall");
   }
 }
@@ -43,7 +45,8 @@ void check_wall(const std::vector<Region>& layers, std::size_t k, double nozzle_
 slicer::Stroke ring_stroke(const slicer::Ring& ring, double width, double height) {
   slicer::Stroke s;
   s.start_mm = ring.front();
-  for (std::size_t i = 1; i <= ring.size(); ++i) s.segments.push_back(slicer::line_to(ring[i % ring.size()], slicer::Feature::Wall));
+  for (std::size_t i = 1; i <= ring.size(); ++i)
+    s.segments.push_back(slicer::line_to(ring[i % ring.size()], slicer::Feature::Wall));
   s.width_mm = width;
   s.height_mm = height;
   return s;
@@ -51,7 +54,8 @@ slicer::Stroke ring_stroke(const slicer::Ring& ring, double width, double height
 
 double line_length(const PatternLine& l) {
   double len = 0.0;
-  for (std::size_t i = 0; i + 1 < l.points.size(); ++i) len += (l.points[i + 1] - l.points[i]).norm();
+  for (std::size_t i = 0; i + 1 < l.points.size(); ++i)
+    len += (l.points[i + 1] - l.points[i]).norm();
   return len;
 }
 
@@ -87,7 +91,8 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
       out.strokes.push_back(ring_stroke(ring, d, h));
     }
   }
-  const RingSet rs = ring_set(slicer::rings_of(slicer::offset_region(region, -(perimeters + 0.5) * d)));
+  const RingSet rs =
+      ring_set(slicer::rings_of(slicer::offset_region(region, -(perimeters + 0.5) * d)));
   std::vector<FillPiece> pieces;
   for (FillPiece& piece : clip_to_rings(rs, pattern_lines(p, layer, half))) {
     const double len = line_length(piece.line);
@@ -110,7 +115,8 @@ slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p) {
   for (std::size_t k = 0; k < part.layers.size(); ++k) {
     const double z = (static_cast<double>(k) + 1.0) * p.layer_height_mm;
     check_wall(part.layers, k, p.nozzle_mm, z);
-    LayerFill f = fill_layer(part.layers[k], p, static_cast<int>(k), part.perimeters, part.half_extent_mm);
+    LayerFill f =
+        fill_layer(part.layers[k], p, static_cast<int>(k), part.perimeters, part.half_extent_mm);
     slicer::Layer layer{z, p.layer_height_mm, ordered(std::move(f.strokes), at)};
     if (!layer.strokes.empty()) at = layer.strokes.back().end_mm();
     for (const auto& s : layer.strokes) deposited += slicer::stroke_length(s);
@@ -132,7 +138,8 @@ slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p) {
       {"porosity", part.volume_mm3 > 0 ? 1.0 - deposited * area / part.volume_mm3 : 0.0},
       {"porosity_formula", "1 - (deposited length * bead area) / part volume"},
       {"pattern_porosity", p.porosity},
-      {"pattern_porosity_in_part", sliced_volume > 0 ? 1.0 - pattern_length * area / sliced_volume : 0.0},
+      {"pattern_porosity_in_part",
+       sliced_volume > 0 ? 1.0 - pattern_length * area / sliced_volume : 0.0},
       {"bead_area_mm2", area},
   };
   if (p.pitch_mm > 0) t.derived["pitch_mm"] = p.pitch_mm;

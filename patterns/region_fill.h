@@ -25,7 +25,7 @@ LayerFill fill_layer(const slicer::Region& region, const RegionPattern& p, int l
 struct PartFill {
   std::vector<slicer::Region> layers;  // layer k's region, layer k at z = (k + 1) h
   slicer::Vec2 half_extent_mm = slicer::Vec2::Zero();
-  double volume_mm3 = 0.0;             // the part's volume, for the deposited porosity
+  double volume_mm3 = 0.0;  // the part's volume, for the deposited porosity
   int perimeters = 0;
 };
 

@@ -13,7 +13,7 @@ namespace {
 
 // End e of piece p is vertex 2p + e (e = 0 start, 1 end).
 struct EndGraph {
-  std::vector<int> next, prev;  // ring neighbours of each vertex (-1 = none)
+  std::vector<int> next, prev;   // ring neighbours of each vertex (-1 = none)
   std::vector<double> gap_next;  // ring distance from the vertex forward to next
 };
 
@@ -86,9 +86,8 @@ class Joiner {
     prefer_ = static_cast<Prefer>(variant / 2);
     std::vector<int> order(pieces_.size());
     std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-      return pieces_[a].line.order < pieces_[b].line.order;
-    });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return pieces_[a].line.order < pieces_[b].line.order; });
     if (variant % 2 == 1) std::reverse(order.begin(), order.end());
     std::vector<Chain> chains;
     for (int p : order) {
@@ -122,7 +121,8 @@ class Joiner {
         const int w = fwd ? g_.next[v] : g_.prev[v];
         if (w < 0 || used_[w / 2]) continue;
         const double gap = fwd ? g_.gap_next[v] : g_.gap_next[w];
-        const bool wanted = prefer_ == Prefer::Shorter ? gap < best_gap : fwd == (prefer_ == Prefer::Forward);
+        const bool wanted =
+            prefer_ == Prefer::Shorter ? gap < best_gap : fwd == (prefer_ == Prefer::Forward);
         if (best < 0 || wanted) best = w, forward = fwd, best_gap = gap;
       }
       if (best < 0) return;
@@ -147,7 +147,8 @@ class Joiner {
     for (int v = 0; v < static_cast<int>(g_.next.size()); ++v) {
       if (g_.next[v] >= 0 && g_.next[v] != v) cands.push_back({g_.gap_next[v], v, g_.next[v]});
     }
-    std::stable_sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) { return a.gap < b.gap; });
+    std::stable_sort(cands.begin(), cands.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.gap < b.gap; });
     for (const Candidate& k : cands) {
       const int a = chain_of[k.from], b = chain_of[k.to];
       if (a < 0 || b < 0 || a == b) continue;
@@ -198,8 +199,10 @@ class Joiner {
             useful = useful || (y >= 0 && y != v && y != w && is_end(y));
           }
           if (!useful) continue;
-          Chain b1(chains[b].begin() + (w_is_head ? k : 0), chains[b].begin() + (w_is_head ? chains[b].size() : k + 1));
-          Chain b2(chains[b].begin() + (w_is_head ? 0 : k + 1), chains[b].begin() + (w_is_head ? k : chains[b].size()));
+          Chain b1(chains[b].begin() + (w_is_head ? k : 0),
+                   chains[b].begin() + (w_is_head ? chains[b].size() : k + 1));
+          Chain b2(chains[b].begin() + (w_is_head ? 0 : k + 1),
+                   chains[b].begin() + (w_is_head ? k : chains[b].size()));
           Chain ca = chains[a];
           if (head_vertex(ca.front()) == v) ca = reversed_chain(ca);
           if (tail_vertex(b1.back()) == w) b1 = reversed_chain(b1);
@@ -248,8 +251,8 @@ void walk_ring(const RingSet& rs, const RingSpot& a, const RingSpot& b, bool for
     int i = forward ? (a.edge + 1) % n : a.edge;
     // Walking backward along edge b.edge from its end vertex b.edge + 1 reaches b first.
     const int stop = forward ? b.edge : (b.edge + 1) % n;
-    const bool same_edge_ahead = forward ? (a.edge == b.edge && a.s_mm <= b.s_mm)
-                                         : (a.edge == b.edge && a.s_mm >= b.s_mm);
+    const bool same_edge_ahead =
+        forward ? (a.edge == b.edge && a.s_mm <= b.s_mm) : (a.edge == b.edge && a.s_mm >= b.s_mm);
     if (!same_edge_ahead) {
       for (int k = 0; k <= n; ++k) {
         out.push_back(ring[static_cast<std::size_t>(i)]);
@@ -283,7 +286,8 @@ slicer::Stroke emit(const RingSet& rs, const std::vector<FillPiece>& pieces, con
                 st.join_forward, join);
       for (const Vec2& q : join) s.segments.push_back(slicer::line_to(q, o.connector));
     }
-    for (std::size_t i = 1; i < pts.size(); ++i) s.segments.push_back(slicer::line_to(pts[i], feats[i - 1]));
+    for (std::size_t i = 1; i < pts.size(); ++i)
+      s.segments.push_back(slicer::line_to(pts[i], feats[i - 1]));
   }
   return s;
 }
@@ -300,7 +304,8 @@ std::vector<slicer::Stroke> join_pieces(const RingSet& rs, const std::vector<Fil
   for (int v = 0; v < Joiner::kVariants; ++v) {
     std::vector<Chain> chains = joiner.run(v);
     const double len = join_length(g, chains);
-    if (v == 0 || chains.size() < best.size() || (chains.size() == best.size() && len < best_len - 1e-9)) {
+    if (v == 0 || chains.size() < best.size() ||
+        (chains.size() == best.size() && len < best_len - 1e-9)) {
       best = std::move(chains);
       best_len = len;
     }

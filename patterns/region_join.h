@@ -13,8 +13,8 @@ namespace strand::patterns {
 
 struct JoinOptions {
   slicer::Feature connector = slicer::Feature::Infill;  // feature of the ring stretches
-  double width_mm = 0.0;   // stroke bead width
-  double height_mm = 0.0;  // stroke bead height
+  double width_mm = 0.0;                                // stroke bead width
+  double height_mm = 0.0;                               // stroke bead height
 };
 
 // Strands made of every piece once. First each strand grows piece by piece to a free ring

@@ -2,11 +2,10 @@
 // layers generated once (big enough to cover the part) and flattened to polylines.
 #include "patterns/region_pattern.h"
 
-#include "patterns/scaffold.h"
-
 #include <algorithm>
 #include <cmath>
 
+#include "patterns/scaffold.h"
 #include "slicer/input_error.h"
 #include "slicer/tolerances.h"
 #include "slicer/units.h"
@@ -60,7 +59,7 @@ slicer::Toolpath lattice_layer(const GeneratorSpec& g, nlohmann::json values, in
   values["rows"] = rows;
   values["cols"] = cols;
   if (g.table().defs.end() != std::find_if(g.table().defs.begin(), g.table().defs.end(),
-                                            [](const auto& d) { return d.key == "grip"; })) {
+                                           [](const auto& d) { return d.key == "grip"; })) {
     values["grip"] = 0.0;
   }
   return g.generate(slicer::resolve_params(g.table(), values));
@@ -81,8 +80,9 @@ void build_lattice(const GeneratorSpec& g, const nlohmann::json& values, const V
   const int cols = even_cells(2 * half.x() + 2 * cell.x(), cell.x());
   const int rows = even_cells(2 * half.y() + 2 * cell.y(), cell.y());
   if (std::max(cols, rows) > kMaxLatticeCells) {
-    throw InputError("slice: the part needs " + std::to_string(std::max(cols, rows)) + " " + g.name +
-                     " cells across; at most " + std::to_string(kMaxLatticeCells) + " (use a larger cell)");
+    throw InputError("slice: the part needs " + std::to_string(std::max(cols, rows)) + " " +
+                     g.name + " cells across; at most " + std::to_string(kMaxLatticeCells) +
+                     " (use a larger cell)");
   }
   const slicer::Toolpath t = lattice_layer(g, values, cols, rows);
   double central_length = 0.0;
@@ -92,7 +92,8 @@ void build_lattice(const GeneratorSpec& g, const nlohmann::json& values, const V
     PatternLine line = flattened(s);
     for (std::size_t i = 0; i + 1 < line.points.size(); ++i) {
       const Vec2 m = (line.points[i] + line.points[i + 1]) / 2.0 - c;
-      if (std::abs(m.x()) < q.x() && std::abs(m.y()) < q.y()) central_length += (line.points[i + 1] - line.points[i]).norm();
+      if (std::abs(m.x()) < q.x() && std::abs(m.y()) < q.y())
+        central_length += (line.points[i + 1] - line.points[i]).norm();
     }
     p.lattice.push_back(std::move(line));
   }
@@ -106,7 +107,8 @@ bool is_extent_key(const std::string& key) {
   return std::find(std::begin(kExtentKeys), std::end(kExtentKeys), key) != std::end(kExtentKeys);
 }
 
-RegionPattern region_pattern(const GeneratorSpec& g, const nlohmann::json& given, const Vec2& half) {
+RegionPattern region_pattern(const GeneratorSpec& g, const nlohmann::json& given,
+                             const Vec2& half) {
   std::vector<std::string> problems;
   for (const auto& [k, v] : given.items()) {
     if (is_extent_key(k)) {
@@ -130,7 +132,8 @@ RegionPattern region_pattern(const GeneratorSpec& g, const nlohmann::json& given
     p.pitch_mm = s.pitch_mm;
     p.angles_deg = s.angles_deg;
     p.min_piece_mm = s.nozzle_mm;
-    p.porosity = 1.0 - slicer::bead_area_mm2(s.nozzle_mm, s.layer_height_mm) / (s.pitch_mm * s.layer_height_mm);
+    p.porosity = 1.0 - slicer::bead_area_mm2(s.nozzle_mm, s.layer_height_mm) /
+                           (s.pitch_mm * s.layer_height_mm);
     return p;
   }
   const nlohmann::json values = slicer::resolve_params(g.table(), probe);
@@ -144,7 +147,8 @@ RegionPattern region_pattern(const GeneratorSpec& g, const nlohmann::json& given
 
 std::vector<PatternLine> pattern_lines(const RegionPattern& p, int layer, const Vec2& half) {
   if (!p.lattice.empty()) return p.lattice;
-  const double a = slicer::deg_to_rad(p.angles_deg[static_cast<std::size_t>(layer) % p.angles_deg.size()]);
+  const double a =
+      slicer::deg_to_rad(p.angles_deg[static_cast<std::size_t>(layer) % p.angles_deg.size()]);
   const Vec2 u(std::cos(a), std::sin(a)), n(-std::sin(a), std::cos(a));
   const double reach = half.norm() + p.pitch_mm;
   const int k = static_cast<int>(std::ceil(reach / p.pitch_mm));

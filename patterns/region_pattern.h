@@ -14,14 +14,14 @@
 namespace strand::patterns {
 
 struct RegionPattern {
-  std::string name;            // generator name: scaffold, tetrachiral, ...
-  nlohmann::json values;       // the pattern's checked values, defaults filled, no extent rows
+  std::string name;       // generator name: scaffold, tetrachiral, ...
+  nlohmann::json values;  // the pattern's checked values, defaults filled, no extent rows
   double nozzle_mm = 0.0;
   double layer_height_mm = 0.0;
   double speed_mm_per_min = 0.0;
-  double pitch_mm = 0.0;                 // scaffold: line spacing
-  std::vector<double> angles_deg;        // scaffold: lay-down angle per layer (cycled)
-  std::vector<PatternLine> lattice;      // lattices: one layer's strands, part frame
+  double pitch_mm = 0.0;             // scaffold: line spacing
+  std::vector<double> angles_deg;    // scaffold: lay-down angle per layer (cycled)
+  std::vector<PatternLine> lattice;  // lattices: one layer's strands, part frame
   slicer::Feature connector = slicer::Feature::Infill;  // boundary joins
   // Pieces of the pattern shorter than this inside a region are left out: a scaffold line
   // grazing a corner (1 nozzle), a lattice node or rib cut by the boundary (4 nozzles),

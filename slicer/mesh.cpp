@@ -34,7 +34,8 @@ double triangle_double_area_mm2(const Mesh& m, int t) {
 
 double surface_area_mm2(const Mesh& m) {
   double a = 0.0;
-  for (std::size_t t = 0; t < m.triangles.size(); ++t) a += triangle_double_area_mm2(m, static_cast<int>(t));
+  for (std::size_t t = 0; t < m.triangles.size(); ++t)
+    a += triangle_double_area_mm2(m, static_cast<int>(t));
   return a / 2.0;
 }
 

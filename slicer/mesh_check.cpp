@@ -108,7 +108,8 @@ Mesh from_surface_mesh(const SurfaceMesh& sm) {
   for (const Point& p : points) m.vertices_mm.emplace_back(p.x(), p.y(), p.z());
   for (const auto& f : polygons) {
     for (std::size_t k = 1; k + 1 < f.size(); ++k) {  // fans, should a hole patch be a polygon
-      m.triangles.push_back({static_cast<int>(f[0]), static_cast<int>(f[k]), static_cast<int>(f[k + 1])});
+      m.triangles.push_back(
+          {static_cast<int>(f[0]), static_cast<int>(f[k]), static_cast<int>(f[k + 1])});
     }
   }
   return m;
@@ -133,7 +134,8 @@ void check_geometry(const Mesh& m, MeshCheck& c) {
     const Point p = CGAL::centroid(sm.point(sm.source(h)), sm.point(sm.target(h)),
                                    sm.point(sm.target(sm.next(h))));
     c.problem = "self-intersecting: " + std::to_string(pairs.size()) +
-                " pair(s) of triangles cut each other, e.g. near " + point_text(Vec3(p.x(), p.y(), p.z()));
+                " pair(s) of triangles cut each other, e.g. near " +
+                point_text(Vec3(p.x(), p.y(), p.z()));
     return;
   }
   c.inside_out = !PMP::is_outward_oriented(sm);
@@ -173,7 +175,8 @@ Mesh repaired(const Mesh& m, std::vector<std::string>& changes) {
     added += patch.size();
   }
   if (filled > 0) {
-    changes.push_back("filled holes: " + std::to_string(filled) + " (" + std::to_string(added) + " triangles)");
+    changes.push_back("filled holes: " + std::to_string(filled) + " (" + std::to_string(added) +
+                      " triangles)");
   }
   return from_surface_mesh(sm);
 }
@@ -198,14 +201,16 @@ PreparedMesh prepare_mesh(const Mesh& input, bool repair, const std::string& wha
   const std::size_t merged = input.vertices_mm.size() - out.mesh.vertices_mm.size();
   out.before = check_mesh(out.mesh);
   if (!out.before.ok()) {
-    if (!repair) throw InputError(what + ": " + out.before.problem + " (run with --repair to fix it)");
+    if (!repair)
+      throw InputError(what + ": " + out.before.problem + " (run with --repair to fix it)");
     if (merged > 0) out.changes.push_back("merged coincident vertices: " + std::to_string(merged));
     out.mesh = weld_mesh(repaired(out.mesh, out.changes));
     const MeshCheck after = check_mesh(out.mesh);
     if (!after.ok()) {
       const bool cut = after.self_intersections > 0;
       throw InputError(what + ": " + after.problem +
-                       (cut ? " (--repair does not cut self-intersections: export the part as one closed surface)"
+                       (cut ? " (--repair does not cut self-intersections: export the part as one "
+                              "closed surface)"
                             : " (still after --repair)"));
     }
     if (after.inside_out) out.before.inside_out = true;

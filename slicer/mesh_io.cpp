@@ -1,10 +1,10 @@
 // Mesh files to Mesh: OpenMesh for STL/OBJ/PLY/OFF, tinygltf for glTF/GLB, then placement.
 #include "slicer/mesh_io.h"
 
+#include <Eigen/Geometry>
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/System/omstream.hh>
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -26,7 +26,8 @@ using OmMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
 
 std::string extension_of(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
@@ -97,8 +98,9 @@ Mesh read_mesh_file(const std::string& path) {
   if (ec) throw InputError("mesh = " + path + ": cannot read the file");
   if (size == 0) throw InputError("mesh = " + path + ": the file is empty");
   if (size > kMaxInputBytes) {
-    throw InputError("mesh = " + path + ": " + std::to_string(size >> 20) + " MiB, larger than the " +
-                     std::to_string(kMaxInputBytes >> 20) + " MiB limit");
+    throw InputError("mesh = " + path + ": " + std::to_string(size >> 20) +
+                     " MiB, larger than the " + std::to_string(kMaxInputBytes >> 20) +
+                     " MiB limit");
   }
   const std::string ext = extension_of(path);
   Mesh m;
@@ -129,11 +131,10 @@ Placement placement_from(const std::string& key, const std::string& name) {
 }
 
 Mesh place_mesh(Mesh m, const MeshPlacement& p) {
-  const Eigen::Matrix3d r =
-      (Eigen::AngleAxisd(deg_to_rad(p.rotate_deg.z()), Vec3::UnitZ()) *
-       Eigen::AngleAxisd(deg_to_rad(p.rotate_deg.y()), Vec3::UnitY()) *
-       Eigen::AngleAxisd(deg_to_rad(p.rotate_deg.x()), Vec3::UnitX()))
-          .toRotationMatrix();
+  const Eigen::Matrix3d r = (Eigen::AngleAxisd(deg_to_rad(p.rotate_deg.z()), Vec3::UnitZ()) *
+                             Eigen::AngleAxisd(deg_to_rad(p.rotate_deg.y()), Vec3::UnitY()) *
+                             Eigen::AngleAxisd(deg_to_rad(p.rotate_deg.x()), Vec3::UnitX()))
+                                .toRotationMatrix();
   for (Vec3& v : m.vertices_mm) v = r * (v * p.mm_per_unit);
   const Box3 b = bounds(m);
   Vec3 shift(0.0, 0.0, -b.min_mm.z());

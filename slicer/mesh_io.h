@@ -23,7 +23,7 @@ enum class Placement {
 };
 
 struct MeshPlacement {
-  double mm_per_unit = 1.0;      // --mesh-units: mm 1, cm 10, m 1000, in 25.4
+  double mm_per_unit = 1.0;        // --mesh-units: mm 1, cm 10, m 1000, in 25.4
   Vec3 rotate_deg = Vec3::Zero();  // about x, then y, then z (fixed axes, file origin)
   Placement place = Placement::Center;
 };

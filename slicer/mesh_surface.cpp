@@ -32,26 +32,32 @@ std::vector<Vec2> lscm_uv(const Mesh& m, const std::string& source) {
   std::vector<K::Point_3> points;
   std::vector<std::vector<std::size_t>> polygons;
   for (const Vec3& v : m.vertices_mm) points.emplace_back(v.x(), v.y(), v.z());
-  for (const auto& t : m.triangles) polygons.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
+  for (const auto& t : m.triangles)
+    polygons.push_back({std::size_t(t[0]), std::size_t(t[1]), std::size_t(t[2])});
   if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
-    throw InputError("onto = " + source + ": not a manifold surface patch (edges shared by 3+ triangles or flipped)");
+    throw InputError("onto = " + source +
+                     ": not a manifold surface patch (edges shared by 3+ triangles or flipped)");
   }
   SurfaceMesh sm;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
   std::vector<SurfaceMesh::Halfedge_index> borders;
   PMP::extract_boundary_cycles(sm, std::back_inserter(borders));
-  const long euler = static_cast<long>(sm.number_of_vertices()) - static_cast<long>(sm.number_of_edges()) +
+  const long euler = static_cast<long>(sm.number_of_vertices()) -
+                     static_cast<long>(sm.number_of_edges()) +
                      static_cast<long>(sm.number_of_faces());
   if (borders.size() != 1 || euler != 1) {
-    throw InputError("onto = " + source + ": not a disk-like patch (" + std::to_string(borders.size()) +
-                     " border(s), Euler characteristic " + std::to_string(euler) +
-                     "; need 1 and 1) and no UVs in the file");
+    throw InputError("onto = " + source + ": not a disk-like patch (" +
+                     std::to_string(borders.size()) + " border(s), Euler characteristic " +
+                     std::to_string(euler) + "; need 1 and 1) and no UVs in the file");
   }
   auto uvmap = sm.add_property_map<SurfaceMesh::Vertex_index, K::Point_2>("v:uv").first;
-  using Parameterizer = SMP::LSCM_parameterizer_3<SurfaceMesh, SMP::Two_vertices_parameterizer_3<SurfaceMesh>>;
-  const SMP::Error_code err = SMP::parameterize(sm, Parameterizer(), PMP::longest_border(sm).first, uvmap);
+  using Parameterizer =
+      SMP::LSCM_parameterizer_3<SurfaceMesh, SMP::Two_vertices_parameterizer_3<SurfaceMesh>>;
+  const SMP::Error_code err =
+      SMP::parameterize(sm, Parameterizer(), PMP::longest_border(sm).first, uvmap);
   if (err != SMP::OK) {
-    throw InputError("onto = " + source + ": parameterisation failed (" + SMP::get_error_message(err) + ")");
+    throw InputError("onto = " + source + ": parameterisation failed (" +
+                     SMP::get_error_message(err) + ")");
   }
   std::vector<Vec2> uv;
   for (const auto v : sm.vertices()) uv.emplace_back(uvmap[v].x(), uvmap[v].y());
@@ -75,8 +81,9 @@ void normalise_uv(const Mesh& m, std::vector<Vec2>& uv, bool align, const std::s
   }
   const int n = static_cast<int>(m.triangles.size());
   if (positive != 0 && positive != n) {
-    throw InputError("onto = " + source + ": the UV map folds over (" + std::to_string(std::min(positive, n - positive)) +
-                     " of " + std::to_string(n) + " triangles flipped)");
+    throw InputError("onto = " + source + ": the UV map folds over (" +
+                     std::to_string(std::min(positive, n - positive)) + " of " + std::to_string(n) +
+                     " triangles flipped)");
   }
   if (a2 < 0) {
     for (Vec2& q : uv) q.y() = -q.y();  // mirrored map: keep (u, v) counter-clockwise
@@ -105,8 +112,8 @@ void normalise_uv(const Mesh& m, std::vector<Vec2>& uv, bool align, const std::s
 
 struct MeshSurface::Impl {
   Mesh mesh;
-  std::vector<Vec2> uv;       // mm, per vertex
-  std::vector<Vec3> normal;   // unit, per vertex, towards the nozzle
+  std::vector<Vec2> uv;      // mm, per vertex
+  std::vector<Vec3> normal;  // unit, per vertex, towards the nozzle
   std::string source, uv_source;
   MapDistortion distortion;
   UvBox box;
@@ -126,7 +133,8 @@ void MeshSurface::Impl::build_grid() {
   box = {uv.front(), uv.front()};
   for (const Vec2& q : uv) box.min_mm = box.min_mm.cwiseMin(q), box.max_mm = box.max_mm.cwiseMax(q);
   const Vec2 size = (box.max_mm - box.min_mm).cwiseMax(Vec2(1e-6, 1e-6));
-  cell = std::max(std::sqrt(size.prod() / std::max<double>(1.0, mesh.triangles.size())) * 2.0, size.maxCoeff() / 1024);
+  cell = std::max(std::sqrt(size.prod() / std::max<double>(1.0, mesh.triangles.size())) * 2.0,
+                  size.maxCoeff() / 1024);
   nx = static_cast<int>(size.x() / cell) + 1;
   ny = static_cast<int>(size.y() / cell) + 1;
   grid.assign(static_cast<std::size_t>(nx) * ny, {});
@@ -135,7 +143,8 @@ void MeshSurface::Impl::build_grid() {
     const Vec2 lo = uv[f[0]].cwiseMin(uv[f[1]]).cwiseMin(uv[f[2]]) - box.min_mm;
     const Vec2 hi = uv[f[0]].cwiseMax(uv[f[1]]).cwiseMax(uv[f[2]]) - box.min_mm;
     for (int y = std::max(0, int(lo.y() / cell)); y <= std::min(ny - 1, int(hi.y() / cell)); ++y) {
-      for (int x = std::max(0, int(lo.x() / cell)); x <= std::min(nx - 1, int(hi.x() / cell)); ++x) {
+      for (int x = std::max(0, int(lo.x() / cell)); x <= std::min(nx - 1, int(hi.x() / cell));
+           ++x) {
         grid[static_cast<std::size_t>(y) * nx + x].push_back(static_cast<int>(t));
       }
     }
@@ -146,7 +155,8 @@ void MeshSurface::Impl::build_normals() {
   normal.assign(mesh.vertices_mm.size(), Vec3::Zero());
   Vec3 sum = Vec3::Zero();
   for (const auto& f : mesh.triangles) {
-    const Vec3 n = (mesh.vertices_mm[f[1]] - mesh.vertices_mm[f[0]]).cross(mesh.vertices_mm[f[2]] - mesh.vertices_mm[f[0]]);
+    const Vec3 n = (mesh.vertices_mm[f[1]] - mesh.vertices_mm[f[0]])
+                       .cross(mesh.vertices_mm[f[2]] - mesh.vertices_mm[f[0]]);
     for (int k = 0; k < 3; ++k) normal[f[k]] += n;  // area-weighted
     sum += n;
   }
@@ -164,7 +174,8 @@ void MeshSurface::Impl::measure() {
     if (a2 <= 0) continue;
     const double ratio = triangle_double_area_mm2(mesh, static_cast<int>(t)) / a2;
     Eigen::Matrix<double, 3, 2> e;
-    e << mesh.vertices_mm[f[1]] - mesh.vertices_mm[f[0]], mesh.vertices_mm[f[2]] - mesh.vertices_mm[f[0]];
+    e << mesh.vertices_mm[f[1]] - mesh.vertices_mm[f[0]],
+        mesh.vertices_mm[f[2]] - mesh.vertices_mm[f[0]];
     Eigen::Matrix2d g;
     g << uv[f[1]] - uv[f[0]], uv[f[2]] - uv[f[0]];
     const Eigen::Matrix<double, 3, 2> j = e * g.inverse();
@@ -179,7 +190,8 @@ void MeshSurface::Impl::measure() {
 
 int MeshSurface::Impl::locate(const Vec2& q, Vec3& bary) const {
   const Vec2 rel = q - box.min_mm;
-  const int x = static_cast<int>(std::floor(rel.x() / cell)), y = static_cast<int>(std::floor(rel.y() / cell));
+  const int x = static_cast<int>(std::floor(rel.x() / cell)),
+            y = static_cast<int>(std::floor(rel.y() / cell));
   if (x < 0 || y < 0 || x >= nx || y >= ny) return -1;
   constexpr double kInsideSlack = 1e-9;  // barycentric slack on shared edges
   for (int t : grid[static_cast<std::size_t>(y) * nx + x]) {
@@ -196,7 +208,8 @@ int MeshSurface::Impl::locate(const Vec2& q, Vec3& bary) const {
   return -1;
 }
 
-MeshSurface::MeshSurface(const Mesh& input, const std::string& source) : impl_(std::make_unique<Impl>()) {
+MeshSurface::MeshSurface(const Mesh& input, const std::string& source)
+    : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.mesh = weld_mesh(input);
   s.source = source;
@@ -242,14 +255,15 @@ bool MeshSurface::in_domain(const Vec2& uv) const {
 nlohmann::json MeshSurface::describe() const {
   const Impl& s = *impl_;
   const Box3 b = bounds(s.mesh);
-  return {{"kind", "mesh"},
-          {"source", s.source},
-          {"triangles", s.mesh.triangles.size()},
-          {"size_mm", {b.size_mm().x(), b.size_mm().y(), b.size_mm().z()}},
-          {"uv_source", s.uv_source},
-          {"uv_domain_mm", {s.box.min_mm.x(), s.box.min_mm.y(), s.box.max_mm.x(), s.box.max_mm.y()}},
-          {"area_ratio_3d_to_uv", {s.distortion.area_ratio_min, s.distortion.area_ratio_max}},
-          {"conformal_stretch_max", s.distortion.stretch_max}};
+  return {
+      {"kind", "mesh"},
+      {"source", s.source},
+      {"triangles", s.mesh.triangles.size()},
+      {"size_mm", {b.size_mm().x(), b.size_mm().y(), b.size_mm().z()}},
+      {"uv_source", s.uv_source},
+      {"uv_domain_mm", {s.box.min_mm.x(), s.box.min_mm.y(), s.box.max_mm.x(), s.box.max_mm.y()}},
+      {"area_ratio_3d_to_uv", {s.distortion.area_ratio_min, s.distortion.area_ratio_max}},
+      {"conformal_stretch_max", s.distortion.stretch_max}};
 }
 
 TriangleMesh MeshSurface::preview_mesh(double) const { return to_triangle_mesh(impl_->mesh); }

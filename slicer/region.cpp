@@ -1,10 +1,9 @@
 // Regions through Clipper 6: unions from slice contours, offsets, differences.
 #include "slicer/region.h"
 
-#include <polyclipping/clipper.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <polyclipping/clipper.hpp>
 
 #include "slicer/tolerances.h"
 
@@ -30,7 +29,8 @@ Ring to_ring(const Path& p) {
   Ring r;
   r.reserve(p.size());
   for (const IntPoint& q : p) {
-    r.emplace_back(static_cast<double>(q.X) / kClipperUnitsPerMm, static_cast<double>(q.Y) / kClipperUnitsPerMm);
+    r.emplace_back(static_cast<double>(q.X) / kClipperUnitsPerMm,
+                   static_cast<double>(q.Y) / kClipperUnitsPerMm);
   }
   return r;
 }

@@ -70,17 +70,19 @@ class Draper {
     const Vec2 uv = q.head<2>() - center_;
     if (!s_.in_domain(uv)) {
       const auto d = s_.domain();
-      throw InputError("onto: the pattern leaves the substrate at (u, v) = (" + slicer::short_number(uv.x()) +
-                       ", " + slicer::short_number(uv.y()) + ") mm; the patch spans u in [" +
-                       slicer::short_number(d.min_mm.x()) + ", " + slicer::short_number(d.max_mm.x()) +
-                       "], v in [" + slicer::short_number(d.min_mm.y()) + ", " + slicer::short_number(d.max_mm.y()) +
-                       "] (make the pattern smaller)");
+      throw InputError("onto: the pattern leaves the substrate at (u, v) = (" +
+                       slicer::short_number(uv.x()) + ", " + slicer::short_number(uv.y()) +
+                       ") mm; the patch spans u in [" + slicer::short_number(d.min_mm.x()) + ", " +
+                       slicer::short_number(d.max_mm.x()) + "], v in [" +
+                       slicer::short_number(d.min_mm.y()) + ", " +
+                       slicer::short_number(d.max_mm.y()) + "] (make the pattern smaller)");
     }
     const slicer::SurfaceFrame f = s_.frame_at(uv, 0.0);
     const double slope = slicer::rad_to_deg(std::acos(std::clamp(f.normal.z(), -1.0, 1.0)));
     if (slope > m_.max_surface_slope_deg) {
-      throw InputError("onto: the substrate slopes " + slicer::short_number(std::round(slope * 10) / 10) +
-                       " deg at " + xyz(f.point_mm) + " under the path; " + m_.name +
+      throw InputError("onto: the substrate slopes " +
+                       slicer::short_number(std::round(slope * 10) / 10) + " deg at " +
+                       xyz(f.point_mm) + " under the path; " + m_.name +
                        " keeps its nozzle vertical and follows at most max_surface_slope_deg = " +
                        slicer::short_number(m_.max_surface_slope_deg) + " deg");
     }
@@ -103,7 +105,8 @@ class Draper {
   // A run of flat travels becomes: up to the clearance, across, down onto the target.
   void travel(const Move& last_flat, slicer::MotionProgram& out) {
     const Vec3 target = mapped(last_flat.end_mm);
-    const double clear = top_z_ + std::max(layer_z(last_flat, out), 0.0) + std::max(m_.travel_lift_mm, 1.0);
+    const double clear =
+        top_z_ + std::max(layer_z(last_flat, out), 0.0) + std::max(m_.travel_lift_mm, 1.0);
     auto push = [&](const Vec3& p, double feed) {
       Move t = last_flat;
       t.end_mm = p;
@@ -121,7 +124,8 @@ class Draper {
   }
 
   static double layer_z(const Move& mv, const slicer::MotionProgram& p) {
-    return mv.layer >= 0 && mv.layer < static_cast<int>(p.layers.size()) ? p.layers[mv.layer].z_mm : 0.0;
+    return mv.layer >= 0 && mv.layer < static_cast<int>(p.layers.size()) ? p.layers[mv.layer].z_mm
+                                                                         : 0.0;
   }
 
   const slicer::Surface& s_;
@@ -135,7 +139,8 @@ class Draper {
 }  // namespace
 
 slicer::MotionProgram plan_draped(const slicer::Toolpath& t, const slicer::Surface& s,
-                                  const machines::MachineProfile& machine, const PlanOptions& options) {
+                                  const machines::MachineProfile& machine,
+                                  const PlanOptions& options) {
   machines::MachineProfile chords = machine;
   chords.arcs = false;  // arcs become chords before mapping: a draped arc is not planar
   const slicer::MotionProgram flat = plan(t, chords, options);

@@ -23,6 +23,7 @@ inline constexpr double kDrapeStepMm = 0.5;
 // it exceeds the machine's limit (naming the slope and the point), and when the result
 // leaves the build volume.
 slicer::MotionProgram plan_draped(const slicer::Toolpath& t, const slicer::Surface& s,
-                                  const machines::MachineProfile& machine, const PlanOptions& options);
+                                  const machines::MachineProfile& machine,
+                                  const PlanOptions& options);
 
 }  // namespace strand::post

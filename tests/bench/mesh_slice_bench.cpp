@@ -16,7 +16,8 @@ namespace {
 void BM_SliceTorus100kInto200Layers(benchmark::State& state) {
   using namespace strand;
   const std::string path = (std::filesystem::temp_directory_path() /
-                            ("strand-bench-torus-" + std::to_string(getpid()) + ".stl")).string();
+                            ("strand-bench-torus-" + std::to_string(getpid()) + ".stl"))
+                               .string();
   const slicer::Mesh torus = testing::torus_mesh(45.0, 30.0, 500, 100);  // 100,000 triangles
   testing::write_binary_stl(torus, path);
   cli::SliceSettings s;

@@ -21,7 +21,8 @@ constexpr int kStrandsPerRegion = 3;
 
 slicer::Mesh random_shape(std::mt19937& rng, int kind) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  if (kind == 0) return testing::box_mesh(slicer::Vec3(6 + 30 * u(rng), 6 + 30 * u(rng), 2 + 4 * u(rng)));
+  if (kind == 0)
+    return testing::box_mesh(slicer::Vec3(6 + 30 * u(rng), 6 + 30 * u(rng), 2 + 4 * u(rng)));
   if (kind == 1) {
     const double r = 5 + 12 * u(rng);
     return testing::tube_mesh(r, u(rng) < 0.5 ? 0.0 : (0.2 + 0.4 * u(rng)) * r, 2 + 4 * u(rng), 64);
@@ -50,11 +51,13 @@ TEST(SliceJob, RandomShapesAreCrossingFreeWithFewStrands) {
     const auto& d = r.toolpath.derived;
     for (std::size_t k = 0; k < d.at("regions_per_layer").size(); ++k) {
       const int regions = d.at("regions_per_layer")[k].get<int>();
-      EXPECT_LE(d.at("pattern_strands_per_layer")[k].get<int>(), kStrandsPerRegion * std::max(regions, 1))
+      EXPECT_LE(d.at("pattern_strands_per_layer")[k].get<int>(),
+                kStrandsPerRegion * std::max(regions, 1))
           << path << " layer " << k;
     }
     const double gap = d.at("porosity").get<double>() - d.at("pattern_porosity").get<double>();
-    EXPECT_LT(gap, 0.02) << path << ": deposited porosity is at most the pattern's (joins, perimeters add)";
+    EXPECT_LT(gap, 0.02) << path
+                         << ": deposited porosity is at most the pattern's (joins, perimeters add)";
     EXPECT_GT(gap, s.perimeters ? -0.45 : -0.25) << path;
   }
 }

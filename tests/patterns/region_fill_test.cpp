@@ -19,11 +19,14 @@ using slicer::Vec2;
 
 Ring circle(double r, int n, bool ccw = true) {
   Ring out;
-  for (int i = 0; i < n; ++i) out.push_back(r * slicer::unit_vector((ccw ? 1 : -1) * slicer::kTwoPi * i / n));
+  for (int i = 0; i < n; ++i)
+    out.push_back(r * slicer::unit_vector((ccw ? 1 : -1) * slicer::kTwoPi * i / n));
   return out;
 }
 
-Ring rect(double w, double h) { return {Vec2(-w / 2, -h / 2), Vec2(w / 2, -h / 2), Vec2(w / 2, h / 2), Vec2(-w / 2, h / 2)}; }
+Ring rect(double w, double h) {
+  return {Vec2(-w / 2, -h / 2), Vec2(w / 2, -h / 2), Vec2(w / 2, h / 2), Vec2(-w / 2, h / 2)};
+}
 
 struct Seg {
   Vec2 a, b;
@@ -51,7 +54,8 @@ int crossings(const std::vector<slicer::Stroke>& strokes) {
   for (std::size_t i = 0; i < segs.size(); ++i) {
     for (std::size_t j = i + 1; j < segs.size(); ++j) {
       if (segs[i].stroke == segs[j].stroke && j == i + 1) continue;
-      n += slicer::segment_contact(segs[i].a, segs[i].b, segs[j].a, segs[j].b, 1e-9) == slicer::Contact::Crossing;
+      n += slicer::segment_contact(segs[i].a, segs[i].b, segs[j].a, segs[j].b, 1e-9) ==
+           slicer::Contact::Crossing;
     }
   }
   return n;
@@ -79,7 +83,8 @@ TEST(RegionFill, ConvexRegionIsOneSerpentinePerLayer) {
 }
 
 TEST(RegionFill, HoleGetsNoFilamentAndFewStrands) {
-  const slicer::Region region = slicer::region_from_contours({circle(12, 180), circle(4, 90, false)});
+  const slicer::Region region =
+      slicer::region_from_contours({circle(12, 180), circle(4, 90, false)});
   const LayerFill f = fill_layer(region, scaffold(0.6, 1.6), 0, 1, Vec2(12, 12));
   EXPECT_EQ(crossings(f.strokes), 0);
   EXPECT_LE(f.pattern_strands, 3) << "an annulus: at most three strands";
@@ -87,7 +92,8 @@ TEST(RegionFill, HoleGetsNoFilamentAndFewStrands) {
     for (double t : {0.0, 0.5, 1.0}) {
       const Vec2 p = seg.a + t * (seg.b - seg.a);
       // The hole is a 90-gon on the 4 mm circle: its edges lie 4 cos(pi / 90) from the centre.
-      EXPECT_GT(p.norm(), 4.0 * std::cos(slicer::kPi / 90) + 0.3 - 1e-3) << "a bead inside the hole (or its half width)";
+      EXPECT_GT(p.norm(), 4.0 * std::cos(slicer::kPi / 90) + 0.3 - 1e-3)
+          << "a bead inside the hole (or its half width)";
       EXPECT_LT(p.norm(), 12.0 - 0.3 + 1e-3);
     }
   }
@@ -99,7 +105,8 @@ TEST(RegionFill, LinesStayOnTheGlobalGridInEveryLayer) {
   for (const Ring& ring : {rect(20, 13), Ring{Vec2(-3, -7.3), Vec2(9, -5), Vec2(4, 8.1)}}) {
     const LayerFill f = fill_layer(slicer::region_from_contours({ring}), p, 0, 0, Vec2(10, 10));
     for (const auto& seg : segments_of(f.strokes)) {
-      if (std::abs(seg.a.y() - seg.b.y()) > 1e-9 || (seg.a - seg.b).norm() < 1.0) continue;  // joins
+      if (std::abs(seg.a.y() - seg.b.y()) > 1e-9 || (seg.a - seg.b).norm() < 1.0)
+        continue;  // joins
       const double k = seg.a.y() / p.pitch_mm;
       EXPECT_NEAR(k, std::round(k), 1e-9);
     }
@@ -108,7 +115,8 @@ TEST(RegionFill, LinesStayOnTheGlobalGridInEveryLayer) {
 
 TEST(RegionFill, ConcaveRegionsStayCrossingFreeWithFewStrands) {
   // A U shape and a comb: lines across the arms are cut into several pieces.
-  const Ring u{Vec2(-10, -10), Vec2(10, -10), Vec2(10, 10), Vec2(5, 10), Vec2(5, -5), Vec2(-5, -5), Vec2(-5, 10), Vec2(-10, 10)};
+  const Ring u{Vec2(-10, -10), Vec2(10, -10), Vec2(10, 10), Vec2(5, 10),
+               Vec2(5, -5),    Vec2(-5, -5),  Vec2(-5, 10), Vec2(-10, 10)};
   Ring comb{Vec2(-15, -10), Vec2(12, -10)};  // a base with five teeth standing on it
   for (int i = 4; i >= 0; --i) {
     const double x0 = -15 + 6 * i, x1 = x0 + 3;
@@ -117,7 +125,8 @@ TEST(RegionFill, ConcaveRegionsStayCrossingFreeWithFewStrands) {
   }
   for (const Ring& ring : {u, comb}) {
     for (int layer : {0, 1}) {
-      const LayerFill f = fill_layer(slicer::region_from_contours({ring}), scaffold(0.6, 1.5), layer, 0, Vec2(15, 10));
+      const LayerFill f = fill_layer(slicer::region_from_contours({ring}), scaffold(0.6, 1.5),
+                                     layer, 0, Vec2(15, 10));
       EXPECT_EQ(crossings(f.strokes), 0);
       EXPECT_LE(f.pattern_strands, 6) << "one per arm at most, plus one";
       EXPECT_GE(f.pattern_strands, 1);
@@ -147,7 +156,8 @@ TEST(RegionFill, NozzleWiderThanAWallFailsNamingWhere) {
     fill_part(part, p);
     FAIL() << "no error";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("wider than the part's wall near (0.000, 0.000, 1.478)"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("wider than the part's wall near (0.000, 0.000, 1.478)"),
+              std::string::npos)
         << e.what();
   }
 }

@@ -21,7 +21,8 @@ std::string prepare_error(const Mesh& m, bool repair) {
 }
 
 TEST(MeshCheck, ClosedShapesPass) {
-  for (const Mesh& m : {box_mesh(Vec3(1, 2, 3)), testing::tube_mesh(5, 2, 3, 32), testing::torus_mesh(10, 3, 32, 16)}) {
+  for (const Mesh& m : {box_mesh(Vec3(1, 2, 3)), testing::tube_mesh(5, 2, 3, 32),
+                        testing::torus_mesh(10, 3, 32, 16)}) {
     const MeshCheck c = check_mesh(m);
     EXPECT_TRUE(c.ok()) << c.problem;
     EXPECT_FALSE(c.inside_out);
@@ -86,7 +87,8 @@ TEST(MeshCheck, RepairFillsAHoleAndReportsIt) {
   const PreparedMesh p = prepare_mesh(m, true, "mesh");
   EXPECT_TRUE(check_mesh(p.mesh).ok());
   bool filled = false;
-  for (const auto& c : p.changes) filled = filled || c.find("filled holes: 1 (2 triangles)") != std::string::npos;
+  for (const auto& c : p.changes)
+    filled = filled || c.find("filled holes: 1 (2 triangles)") != std::string::npos;
   EXPECT_TRUE(filled) << ::testing::PrintToString(p.changes);
   EXPECT_NEAR(signed_volume_mm3(p.mesh), signed_volume_mm3(testing::tube_mesh(5, 0, 4, 24)), 1e-6);
 }
@@ -95,7 +97,8 @@ TEST(MeshCheck, RepairStitchesDuplicatedSeams) {
   // The same box with one face's corners duplicated (as some exporters write seams).
   Mesh m = box_mesh(Vec3(3, 3, 3));
   const int base = static_cast<int>(m.vertices_mm.size());
-  for (int k = 0; k < 3; ++k) m.vertices_mm.push_back(m.vertices_mm[m.triangles[0][k]] + Vec3(1e-4, 0, 0));
+  for (int k = 0; k < 3; ++k)
+    m.vertices_mm.push_back(m.vertices_mm[m.triangles[0][k]] + Vec3(1e-4, 0, 0));
   m.triangles[0] = {base, base + 1, base + 2};
   EXPECT_FALSE(check_mesh(m).ok());
   EXPECT_NE(prepare_error(m, false).find("open mesh"), std::string::npos);

@@ -3,7 +3,6 @@
 #include "slicer/mesh_io.h"
 
 #include <gtest/gtest.h>
-
 #include <tiny_gltf.h>
 
 #include <cmath>

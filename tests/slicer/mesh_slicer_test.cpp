@@ -31,7 +31,8 @@ TEST(MeshSlicer, CubeGivesItsSquareAtEveryHeight) {
     ASSERT_EQ(contours.size(), 1u) << z;
     EXPECT_NEAR(std::abs(signed_area_mm2(contours[0])), 200.0, 1e-9);
     for (const Vec2& p : contours[0]) {
-      const double to_edge = std::min({std::abs(p.x()), std::abs(p.x() - 10), std::abs(p.y()), std::abs(p.y() - 20)});
+      const double to_edge =
+          std::min({std::abs(p.x()), std::abs(p.x() - 10), std::abs(p.y()), std::abs(p.y() - 20)});
       EXPECT_LT(to_edge, 1e-9);
     }
   }

@@ -14,7 +14,9 @@ namespace {
 
 constexpr double kW = 60, kD = 40, kSag = 3;
 // The plate's height field and its gradient (tests/support/mesh_shapes.cpp).
-double plate_z(double x, double y) { return kSag * (1.0 - 2.0 * (x * x + y * y) / (kW * kW + kD * kD)); }
+double plate_z(double x, double y) {
+  return kSag * (1.0 - 2.0 * (x * x + y * y) / (kW * kW + kD * kD));
+}
 Vec3 plate_normal(double x, double y) {
   const double k = -4.0 * kSag / (kW * kW + kD * kD);
   return Vec3(-k * x, -k * y, 1.0).normalized();
@@ -62,7 +64,9 @@ TEST(MeshSurface, ClosedMeshWithoutUvsIsNotAPatch) {
     const MeshSurface s(testing::box_mesh(Vec3(1, 1, 1)), "box.stl");
     FAIL();
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("onto = box.stl: not a disk-like patch"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("onto = box.stl: not a disk-like patch"),
+              std::string::npos)
+        << e.what();
   }
 }
 

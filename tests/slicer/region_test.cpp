@@ -26,12 +26,13 @@ TEST(Region, NestedContoursBecomeHolesAndIslands) {
 
 TEST(Region, OffsetShrinksSplitsAndVanishes) {
   // Two 10 mm squares joined by a 1 mm neck.
-  const Region r = region_from_contours({{Vec2(0, 0), Vec2(10, 0), Vec2(10, 4.5), Vec2(12, 4.5), Vec2(12, 0),
-                                          Vec2(22, 0), Vec2(22, 10), Vec2(12, 10), Vec2(12, 5.5), Vec2(10, 5.5),
-                                          Vec2(10, 10), Vec2(0, 10)}});
+  const Region r = region_from_contours(
+      {{Vec2(0, 0), Vec2(10, 0), Vec2(10, 4.5), Vec2(12, 4.5), Vec2(12, 0), Vec2(22, 0),
+        Vec2(22, 10), Vec2(12, 10), Vec2(12, 5.5), Vec2(10, 5.5), Vec2(10, 10), Vec2(0, 10)}});
   ASSERT_EQ(r.size(), 1u);
   EXPECT_EQ(offset_region(r, -0.6).size(), 2u) << "the neck pinches off";
-  EXPECT_NEAR(area_mm2(offset_region(r, -1.0)), 2 * 64.0, 0.2) << "two 8 x 8 squares, rounded inner corners";
+  EXPECT_NEAR(area_mm2(offset_region(r, -1.0)), 2 * 64.0, 0.2)
+      << "two 8 x 8 squares, rounded inner corners";
   EXPECT_TRUE(offset_region(r, -6.0).empty());
   const double lost = area_mm2(region_difference(r, offset_region(offset_region(r, -0.6), 0.6)));
   EXPECT_GT(lost, 2.0) << "opening loses the 1 x 2 mm neck";

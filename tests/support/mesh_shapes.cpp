@@ -29,7 +29,8 @@ int add(Mesh& m, const Vec3& v) {
 }
 
 Vec3 normal_of(const Mesh& m, const std::array<int, 3>& t) {
-  const Vec3 n = (m.vertices_mm[t[1]] - m.vertices_mm[t[0]]).cross(m.vertices_mm[t[2]] - m.vertices_mm[t[0]]);
+  const Vec3 n =
+      (m.vertices_mm[t[1]] - m.vertices_mm[t[0]]).cross(m.vertices_mm[t[2]] - m.vertices_mm[t[0]]);
   return n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitZ();
 }
 
@@ -37,7 +38,8 @@ Vec3 normal_of(const Mesh& m, const std::array<int, 3>& t) {
 
 Mesh box_mesh(const Vec3& s) {
   Mesh m;
-  for (int i = 0; i < 8; ++i) add(m, Vec3((i & 1) ? s.x() : 0, (i & 2) ? s.y() : 0, (i & 4) ? s.z() : 0));
+  for (int i = 0; i < 8; ++i)
+    add(m, Vec3((i & 1) ? s.x() : 0, (i & 2) ? s.y() : 0, (i & 4) ? s.z() : 0));
   quad(m, 0, 2, 3, 1);  // bottom (z = 0), seen from below
   quad(m, 4, 5, 7, 6);  // top
   quad(m, 0, 1, 5, 4);  // y = 0
@@ -118,9 +120,15 @@ void write_binary_stl(const Mesh& m, const std::string& path) {
   put(&count, 4);
   for (const auto& t : m.triangles) {
     const Vec3 n = normal_of(m, t);
-    for (int k = 0; k < 3; ++k) { const float f = static_cast<float>(n[k]); put(&f, 4); }
+    for (int k = 0; k < 3; ++k) {
+      const float f = static_cast<float>(n[k]);
+      put(&f, 4);
+    }
     for (int c = 0; c < 3; ++c) {
-      for (int k = 0; k < 3; ++k) { const float f = static_cast<float>(m.vertices_mm[t[c]][k]); put(&f, 4); }
+      for (int k = 0; k < 3; ++k) {
+        const float f = static_cast<float>(m.vertices_mm[t[c]][k]);
+        put(&f, 4);
+      }
     }
     const std::uint16_t attr = 0;
     put(&attr, 2);

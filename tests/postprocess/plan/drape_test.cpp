@@ -14,10 +14,12 @@ namespace {
 
 slicer::Toolpath scaffold(const std::string& size) {
   const auto* g = patterns::find_generator("scaffold");
-  return g->generate(slicer::resolve_params(g->table(), {{"nozzle", 0.6}, {"gap", 1.0}, {"size", size}, {"layers", 2}}));
+  return g->generate(slicer::resolve_params(
+      g->table(), {{"nozzle", 0.6}, {"gap", 1.0}, {"size", size}, {"layers", 2}}));
 }
 
-std::string error_of(const slicer::Toolpath& t, const slicer::Surface& s, const machines::MachineProfile& m) {
+std::string error_of(const slicer::Toolpath& t, const slicer::Surface& s,
+                     const machines::MachineProfile& m) {
   try {
     plan_draped(t, s, m, plan_options_from(t, 0.01));
   } catch (const InputError& e) {
