@@ -114,11 +114,11 @@ TEST(SliceCli, OntoACurvedPlateFollowsItAndPassesCheck) {
   }
   EXPECT_GT(hi - lo, 0.528 + 0.3) << "deposits follow the crown";
   EXPECT_LT(hi - lo, 0.528 + 0.7);
-  const auto steep = run_strand(
+  const auto too_big = run_strand(
       "slice --onto plate.obj --pattern scaffold --nozzle 0.6 --gap 1 --size 80x60 "
       "--layers 1 --machine marlin-xyz-200 -o q.gcode",
       dir);
-  expect_input_error(steep, "leaves the substrate");
+  expect_input_error(too_big, "leaves the substrate");
   EXPECT_FALSE(exists(dir + "/q.gcode"));
 }
 
