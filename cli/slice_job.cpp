@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cli/job_runner.h"
 #include "machines/profile.h"
 #include "patterns/region_fill.h"
 #include "patterns/registry.h"
@@ -91,6 +92,77 @@ nlohmann::json slice_parameters(const SliceSettings& s, const patterns::RegionPa
   return j;
 }
 
+// Layers for a part `height_mm` tall; throws InputError when the layers, or the pattern
+// segments to clip over all of them, exceed the work bounds.
+int layer_count(const patterns::RegionPattern& pattern, double height_mm,
+                const slicer::Vec2& half) {
+  const double layers_exact = height_mm / pattern.layer_height_mm;
+  if (layers_exact > kMaxSliceLayers) {
+    throw InputError("slice.layer-height = " + slicer::short_number(pattern.layer_height_mm) +
+                     ": the part (" + slicer::short_number(height_mm) +
+                     " mm tall) would need more than " + std::to_string(kMaxSliceLayers) +
+                     " layers");
+  }
+  const int layers = std::max(1, static_cast<int>(std::lround(layers_exact)));
+  double segments = 0.0;
+  for (const auto& line : patterns::pattern_lines(pattern, 0, half)) {
+    segments += static_cast<double>(line.points.size());
+  }
+  if (segments * layers > kMaxSliceSegments) {
+    throw InputError("slice: " + std::to_string(layers) + " layers of " +
+                     slicer::short_number(segments) +
+                     " pattern segments each is more work than allowed (" +
+                     slicer::short_number(kMaxSliceSegments) +
+                     " segments in all); use a coarser pattern or a larger layer height");
+  }
+  return layers;
+}
+
+// The part filled layer by layer.
+SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
+                       const machines::MachineProfile& machine) {
+  SliceResult r;
+  r.part = load_part(s);
+  const slicer::Box3 box = slicer::bounds(r.part.mesh);
+  const slicer::Vec3 size = box.size_mm();
+  check_part_fits(r.part.mesh, machine);
+  const slicer::Vec2 half(std::max(std::abs(box.min_mm.x()), std::abs(box.max_mm.x())),
+                          std::max(std::abs(box.min_mm.y()), std::abs(box.max_mm.y())));
+  const patterns::RegionPattern pattern = patterns::region_pattern(g, s.pattern_values, half);
+  const int layers = layer_count(pattern, size.z(), half);
+  patterns::PartFill fill;
+  fill.layers = slicer::slice_layers(r.part.mesh, pattern.layer_height_mm, layers);
+  fill.half_extent_mm = half;
+  fill.volume_mm3 = slicer::signed_volume_mm3(r.part.mesh);
+  fill.perimeters = s.perimeters;
+  r.toolpath = patterns::fill_part(fill, pattern);
+  r.toolpath.parameters = slice_parameters(s, pattern);
+  r.toolpath.derived["size_mm"] = {size.x(), size.y(), size.z()};
+  r.toolpath.derived["mesh_triangles"] = r.part.mesh.triangles.size();
+  r.toolpath.derived["mesh_repairs"] = r.part.changes;
+  r.produced = post::produce(r.toolpath, machine,
+                             post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output);
+  return r;
+}
+
+// The generator's specimen draped over the substrate (conformal, 3-axis).
+SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& g,
+                         const machines::MachineProfile& machine) {
+  SliceResult r;
+  r.toolpath = g.generate(slicer::resolve_params(g.table(), s.pattern_values));
+  const slicer::Mesh substrate =
+      slicer::place_mesh(slicer::read_mesh_file(s.onto), placement_of(s));
+  const slicer::MeshSurface surface(substrate, s.onto);
+  const post::PlanOptions options = post::plan_options_from(r.toolpath, s.arc_tolerance_mm);
+  slicer::MotionProgram program = post::plan_draped(r.toolpath, surface, machine, options);
+  r.toolpath.parameters["onto"] = s.onto;
+  r.toolpath.parameters["mesh-units"] = s.mesh_units;
+  r.toolpath.parameters["rotate"] = s.rotate;
+  r.toolpath.derived["substrate"] = surface.describe();
+  r.produced = post::produce_program(r.toolpath, std::move(program), machine, options, s.output);
+  return r;
+}
+
 }  // namespace
 
 slicer::Vec3 rotation_from_text(const std::string& text) {
@@ -115,24 +187,6 @@ slicer::Vec3 rotation_from_text(const std::string& text) {
   return {v[0], v[1], v[2]};
 }
 
-// The generator's specimen draped over the substrate (conformal, 3-axis).
-SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& g,
-                         const machines::MachineProfile& machine) {
-  SliceResult r;
-  r.toolpath = g.generate(slicer::resolve_params(g.table(), s.pattern_values));
-  const slicer::Mesh substrate =
-      slicer::place_mesh(slicer::read_mesh_file(s.onto), placement_of(s));
-  const slicer::MeshSurface surface(substrate, s.onto);
-  const post::PlanOptions options = post::plan_options_from(r.toolpath, s.arc_tolerance_mm);
-  slicer::MotionProgram program = post::plan_draped(r.toolpath, surface, machine, options);
-  r.toolpath.parameters["onto"] = s.onto;
-  r.toolpath.parameters["mesh-units"] = s.mesh_units;
-  r.toolpath.parameters["rotate"] = s.rotate;
-  r.toolpath.derived["substrate"] = surface.describe();
-  r.produced = post::produce_program(r.toolpath, std::move(program), machine, options, s.output);
-  return r;
-}
-
 SliceResult produce_slice(const SliceSettings& s) {
   const patterns::GeneratorSpec* g = patterns::find_generator(s.pattern);
   if (!g) throw InputError("slice.pattern = " + s.pattern + ": must be one of " + pattern_names());
@@ -142,46 +196,13 @@ SliceResult produce_slice(const SliceSettings& s) {
         "slice: give a part to fill or --onto SUBSTRATE to lay the pattern on, not both");
   }
   const machines::MachineProfile machine = machines::load_profile(s.machine);
-  if (!s.onto.empty()) return produce_onto(s, *g, machine);
-  SliceResult r;
-  r.part = load_part(s);
-  const slicer::Box3 box = slicer::bounds(r.part.mesh);
-  const slicer::Vec3 size = box.size_mm();
-  check_part_fits(r.part.mesh, machine);
-  const slicer::Vec2 half(std::max(std::abs(box.min_mm.x()), std::abs(box.max_mm.x())),
-                          std::max(std::abs(box.min_mm.y()), std::abs(box.max_mm.y())));
-  const patterns::RegionPattern pattern = patterns::region_pattern(*g, s.pattern_values, half);
-  const double layers_exact = size.z() / pattern.layer_height_mm;
-  if (layers_exact > kMaxSliceLayers) {
-    throw InputError("slice.layer-height = " + slicer::short_number(pattern.layer_height_mm) +
-                     ": the part (" + slicer::short_number(size.z()) +
-                     " mm tall) would need more than " + std::to_string(kMaxSliceLayers) +
-                     " layers");
+  if (machine.plotter.enabled) {
+    throw InputError("machine = " + s.machine +
+                     ": a pen plotter; slice needs a printer profile (strand machines lists them)");
   }
-  const int layers = std::max(1, static_cast<int>(std::lround(layers_exact)));
-  double segments = 0.0;
-  for (const auto& line : patterns::pattern_lines(pattern, 0, half))
-    segments += static_cast<double>(line.points.size());
-  if (segments * layers > kMaxSliceSegments) {
-    throw InputError("slice: " + std::to_string(layers) + " layers of " +
-                     slicer::short_number(segments) +
-                     " pattern segments each is more work than allowed (" +
-                     slicer::short_number(kMaxSliceSegments) +
-                     " segments in all); use a coarser pattern or a larger layer height");
-  }
-  patterns::PartFill fill;
-  fill.layers = slicer::slice_layers(r.part.mesh, pattern.layer_height_mm, layers);
-  fill.half_extent_mm = half;
-  fill.volume_mm3 = slicer::signed_volume_mm3(r.part.mesh);
-  fill.perimeters = s.perimeters;
-  r.toolpath = patterns::fill_part(fill, pattern);
-  r.toolpath.parameters = slice_parameters(s, pattern);
-  r.toolpath.derived["size_mm"] = {size.x(), size.y(), size.z()};
-  r.toolpath.derived["mesh_triangles"] = r.part.mesh.triangles.size();
-  r.toolpath.derived["mesh_repairs"] = r.part.changes;
-  r.produced = post::produce(r.toolpath, machine,
-                             post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output);
-  return r;
+  SliceResult out = s.onto.empty() ? slice_part(s, *g, machine) : produce_onto(s, *g, machine);
+  vet_produced(out.produced, machine, s.arc_tolerance_mm);
+  return out;
 }
 
 }  // namespace strand::cli

@@ -165,6 +165,8 @@ INSTANTIATE_TEST_SUITE_P(
                 "scaffold.layer-height = 0.1"},
         BadCase{"perimeters", "plug.stl --nozzle 0.6 --gap 1 --perimeters 50",
                 "slice.perimeters = 50"},
+        BadCase{"plotter", "plug.stl --nozzle 0.6 --gap 1 --machine xy-plotter-servo",
+                "a pen plotter; slice needs a printer"},
         BadCase{"too_much_work", "plug.stl --nozzle 0.001 --pitch 0.001 --layer-height 0.001",
                 "more work than allowed"}),
     [](const auto& info) { return std::string(info.param.name); });
