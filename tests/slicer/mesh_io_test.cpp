@@ -18,7 +18,20 @@ namespace {
 
 using testing::box_mesh;
 
-double volume_of(const std::string& path) { return signed_volume_mm3(read_mesh_file(path)); }
+// ASCII PLY, written here (the reader's only PLY user).
+void write_ply(const Mesh& m, const std::string& path) {
+  std::string out = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(m.vertices_mm.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                    std::to_string(m.triangles.size()) +
+                    "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const Vec3& v : m.vertices_mm) {
+    out += std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + "\n";
+  }
+  for (const auto& t : m.triangles) {
+    out += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+  }
+  write_file_atomic(path, out);
+}
 
 TEST(MeshIo, EveryOpenMeshFormatReadsTheSameBox) {
   const auto dir = testing::fresh_dir("mesh-io");
@@ -28,7 +41,8 @@ TEST(MeshIo, EveryOpenMeshFormatReadsTheSameBox) {
   testing::write_obj(box, dir + "/o.obj");
   testing::write_off(box, dir + "/f.off");
   testing::write_binary_stl(box, dir + "/UPPER.STL");
-  for (const char* name : {"b.stl", "a.stl", "o.obj", "f.off", "UPPER.STL"}) {
+  write_ply(box, dir + "/p.ply");
+  for (const char* name : {"b.stl", "a.stl", "o.obj", "f.off", "UPPER.STL", "p.ply"}) {
     const Mesh m = read_mesh_file(dir + "/" + name);
     EXPECT_EQ(m.triangles.size(), 12u) << name;
     EXPECT_EQ(m.vertices_mm.size(), 8u) << name << ": STL corners are merged";
