@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "patterns/perimeter_splice.h"
 #include "patterns/region_join.h"
 #include "slicer/input_error.h"
 
@@ -86,9 +87,10 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   out.regions = static_cast<int>(region.size());
   if (region.empty()) return out;
   const double d = p.nozzle_mm, h = p.layer_height_mm;
+  std::vector<slicer::Stroke> inner;  // the innermost perimeter level, spliced in below
   for (int k = 0; k < perimeters; ++k) {
     for (const auto& ring : slicer::rings_of(slicer::offset_region(region, -(k + 0.5) * d))) {
-      out.strokes.push_back(ring_stroke(ring, d, h));
+      (k + 1 == perimeters ? inner : out.strokes).push_back(ring_stroke(ring, d, h));
     }
   }
   const RingSet rs =
@@ -102,6 +104,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   }
   std::vector<slicer::Stroke> strands = join_pieces(rs, pieces, {p.connector, d, h});
   out.pattern_strands = static_cast<int>(strands.size());
+  strands = splice_loops(std::move(inner), std::move(strands), d, out.strokes);
   out.strokes.insert(out.strokes.end(), strands.begin(), strands.end());
   return out;
 }

@@ -13,10 +13,13 @@
 namespace strand::patterns {
 
 struct LayerFill {
-  std::vector<slicer::Stroke> strokes;  // perimeters (outer first), then pattern strands
-  int regions = 0;                      // connected parts of the layer's region
-  int pattern_strands = 0;              // strands of the pattern (perimeters excluded)
-  double pattern_length_mm = 0.0;       // pattern pieces alone, joins excluded
+  // Outer perimeter levels, then the pattern strands with the innermost perimeter loops
+  // spliced into them where a strand ends beside one (patterns/perimeter_splice.h), then
+  // the loops left over.
+  std::vector<slicer::Stroke> strokes;
+  int regions = 0;                 // connected parts of the layer's region
+  int pattern_strands = 0;         // strands of the pattern (perimeters excluded)
+  double pattern_length_mm = 0.0;  // pattern pieces alone, joins excluded
 };
 
 LayerFill fill_layer(const slicer::Region& region, const RegionPattern& p, int layer,
