@@ -72,23 +72,28 @@ Chain reversed_chain(const Chain& c) {
 
 class Joiner {
  public:
-  // How a run grows its chains: pieces in their order or reversed; at each end the shorter
-  // ring stretch, or always the stretch forward along the ring, or always backward.
+  // How a run grows its chains: pieces in their order or reversed, started at the beginning
+  // or a quarter, half or three quarters in; at each end the shorter ring stretch, or
+  // always the stretch forward along the ring, or always backward.
   enum class Prefer { Shorter, Forward, Backward };
-  static constexpr int kVariants = 6;
+  static constexpr int kVariants = 24;
 
   Joiner(const RingSet& rs, const std::vector<FillPiece>& pieces)
       : rs_(rs), pieces_(pieces), g_(end_graph(rs, pieces)) {}
 
-  // Variant v: order reversed when v is odd, preference v / 2.
+  // Variant v: order reversed when v is odd, preference (v / 2) % 3, start (v / 6) / 4 in.
   std::vector<Chain> run(int variant) {
     used_.assign(pieces_.size(), false);
-    prefer_ = static_cast<Prefer>(variant / 2);
+    prefer_ = static_cast<Prefer>((variant / 2) % 3);
     std::vector<int> order(pieces_.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(),
                      [&](int a, int b) { return pieces_[a].line.order < pieces_[b].line.order; });
     if (variant % 2 == 1) std::reverse(order.begin(), order.end());
+    // Variants 6 and up start a quarter, half or three quarters into the order.
+    std::rotate(order.begin(),
+                order.begin() + static_cast<std::ptrdiff_t>(order.size() * (variant / 6) / 4),
+                order.end());
     std::vector<Chain> chains;
     for (int p : order) {
       if (used_[p]) continue;

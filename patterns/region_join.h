@@ -20,9 +20,10 @@ struct JoinOptions {
 // Strands made of every piece once. First each strand grows piece by piece to a free ring
 // neighbour of its end (pieces taken in their `order`, the scaffold's line order, so
 // convex regions come out as one serpentine); then strand ends that are ring neighbours
-// are joined, shortest stretch first. Six growth variants (order either way; the nearer
-// neighbour, always forward or always backward along the ring) are tried and the fewest
-// strands kept, then the least ring deposited. Deterministic.
+// are joined, shortest stretch first, and exchanges free ends that can then be joined.
+// Twenty-four growth variants (order either way, started at 0, 1/4, 1/2 or 3/4 of it; the
+// nearer neighbour, always forward or always backward along the ring) are tried and the
+// fewest strands kept, then the least ring deposited. Deterministic.
 std::vector<slicer::Stroke> join_pieces(const RingSet& rs, const std::vector<FillPiece>& pieces,
                                         const JoinOptions& options);
 

@@ -54,7 +54,7 @@ INSTANTIATE_TEST_SUITE_P(
         PatternCase{"scaffold_angles",
                     "--pattern scaffold --nozzle 0.6 --pitch 2 --angles 0,60,120", 3},
         PatternCase{"tetrachiral", "--pattern tetrachiral --nozzle 0.4 --cell 5 --node-core 1", 4},
-        PatternCase{"hexachiral", "--pattern hexachiral --nozzle 0.4 --cell 5.3 --node-core 1", 6},
+        PatternCase{"hexachiral", "--pattern hexachiral --nozzle 0.4 --cell 5.3 --node-core 1", 3},
         PatternCase{"missing_rib", "--pattern missing-rib --nozzle 0.4 --rib 3 --angle 20", 2},
         PatternCase{"reentrant", "--pattern reentrant --nozzle 0.4 --cell-width 4 --cell-height 4",
                     4}),
