@@ -17,4 +17,12 @@ inline constexpr double kDefaultArcToleranceMm = 0.01;
 // Slack allowed on build-volume checks so that a part placed exactly on the edge passes, mm.
 inline constexpr double kBoundsSlackMm = 1e-6;
 
+// A slicing plane that passes exactly through a mesh vertex is moved up by this much, so
+// every contour is a simple closed curve, mm (far below any layer height).
+inline constexpr double kSliceNudgeMm = 1e-7;
+// Clipper works on integers: coordinates are scaled by this many units per mm (0.01 um).
+inline constexpr double kClipperUnitsPerMm = 1e5;
+// Round joins of region offsets deviate from the true arc by at most this, mm.
+inline constexpr double kOffsetArcToleranceMm = 0.005;
+
 }  // namespace strand::slicer
