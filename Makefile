@@ -5,7 +5,7 @@ DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev li
                    libgtest-dev libbenchmark-dev libpugixml-dev libpolyclipping-dev libtbb-dev \
                    libcairo2-dev libtinygltf-dev chromium libhersheyfont-dev hershey-fonts-data \
                    libfreetype-dev libfontconfig-dev fonts-dejavu-core libpotrace-dev libstb-dev \
-                   libnetpbm-dev
+                   libnetpbm-dev libcgal-dev libopenmesh-dev
 MAKEFLAGS += --no-print-directory
 BUILD_DIR := build
 STRAND := $(BUILD_DIR)/cli/strand

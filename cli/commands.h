@@ -21,5 +21,6 @@ void add_check_command(CLI::App& app, Action& action);
 void add_flow_command(CLI::App& app, Action& action);
 void add_sweep_command(CLI::App& app, Action& action);
 void add_preview_command(CLI::App& app, Action& action);
+void add_slice_command(CLI::App& app, Action& action);
 
 }  // namespace strand::cli

@@ -58,6 +58,18 @@ void refuse_crossing_chords(const slicer::MotionProgram& program, const JobSetti
 
 }  // namespace
 
+void vet_produced(const post::Produced& produced, const machines::MachineProfile& machine,
+                  double arc_tolerance_mm) {
+  JobSettings s;
+  s.arc_tolerance_mm = arc_tolerance_mm;
+  if (s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm) refuse_crossing_chords(produced.program, s);
+#ifndef NDEBUG
+  assert_passes_check(produced.gcode, machine);
+#else
+  (void)machine;
+#endif
+}
+
 JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   if (!j.is_object()) throw InputError(where + ": must be a JSON object");
   std::vector<std::string> problems;
@@ -120,10 +132,7 @@ post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohm
   const slicer::Toolpath t = generator.generate(values);
   post::Produced produced = post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm),
                                           job_output_path(generator, s), s.viewer_e);
-  if (s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm) refuse_crossing_chords(produced.program, s);
-#ifndef NDEBUG
-  assert_passes_check(produced.gcode, machine);
-#endif
+  vet_produced(produced, machine, s.arc_tolerance_mm);
   return produced;
 }
 

@@ -36,6 +36,11 @@ struct JobSpec {
 // Throws InputError naming the key path.
 JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where);
 
+// The checks every produced file passes before it is written: coarse chords that cross a
+// neighbouring pass are refused (InputError); debug builds also assert `strand check`.
+void vet_produced(const post::Produced& produced, const machines::MachineProfile& machine,
+                  double arc_tolerance_mm);
+
 // Generates, plans and emits a flat (planar) job in memory; nothing is written. Throws
 // InputError for bad parameters, an unknown machine, a part that does not fit, or a job on a
 // curved substrate (those run through run_job, see curved_job.h).

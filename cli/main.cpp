@@ -54,6 +54,7 @@ int run(int argc, char** argv) {
   strand::cli::add_flow_command(app, action);
   strand::cli::add_sweep_command(app, action);
   strand::cli::add_preview_command(app, action);
+  strand::cli::add_slice_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

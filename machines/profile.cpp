@@ -160,6 +160,7 @@ MachineProfile profile_from_json(const nlohmann::json& j, const std::string& ori
     problems.push_back(origin + ": deposition.model = \"e-volumetric\": GRBL has no E axis (use valve or none)");
   }
   p.travel_lift_mm = j.value("travel_lift_mm", p.travel_lift_mm);
+  p.max_surface_slope_deg = j.value("max_surface_slope_deg", p.max_surface_slope_deg);
   p.start_gcode = lines(j, "start_gcode");
   p.end_gcode = lines(j, "end_gcode");
   p.source = j;

@@ -82,6 +82,10 @@ struct MachineProfile {
   // "<feature>-speed-factor" overrides the profile's value for that feature.
   std::map<slicer::Feature, double> speed_factors;
   double travel_lift_mm = 1.0;       // z hop for travels between strands
+  // Conformal printing with the nozzle vertical (strand slice --onto): the steepest substrate
+  // slope, normal from vertical, the nozzle follows before its side touches the substrate;
+  // 30 deg suits a plain syringe needle over a gently curved part, deg.
+  double max_surface_slope_deg = 30.0;
   std::vector<std::string> start_gcode;  // templates; {lead_s}, {lead_ms}, {message}
   std::vector<std::string> end_gcode;
   nlohmann::json source;             // the profile as loaded, for reports

@@ -77,6 +77,7 @@ const std::vector<Field>& schema() {
            {"pen", T::Number, false, 0.05, 10.0},
        }},
       {"travel_lift_mm", T::Number, false, 0.0, 100.0},
+      {"max_surface_slope_deg", T::Number, false, 0.0, 89.0},
       {"start_gcode", T::StringList},
       {"end_gcode", T::StringList},
       // --- curved substrates (issue 11): robot cell, its extruder, rotary axis ---

@@ -44,6 +44,23 @@ for plot in plot-lettering plot-photo; do
   "$strand" check "$plot.gcode" --machine xy-plotter-servo | tail -n 1
   for ext in png html; do "$strand" preview "$plot.gcode" -o "$plot-preview.$ext"; done
 done
+# Meshes (samples/meshes/): a bone plug filled with the scaffold and with the tetrachiral
+# lattice, a torus with the scaffold, and a scaffold specimen laid on a curved plate
+# (3-axis, nozzle vertical); every file checked against its machine.
+slice() {  # name machine strand-slice-arguments...
+  local name="$1" machine="$2"; shift 2
+  "$strand" slice "$@" --machine "$machine" -o "$name.gcode" --report "$name.json" | tee "$name-summary.txt"
+  "$strand" check "$name.gcode" --machine "$machine" > "$name-check.txt"
+  tail -n 1 "$name-check.txt"
+  for ext in png html; do "$strand" preview "$name.gcode" -o "$name-preview.$ext"; done
+}
+slice bone-plug-scaffold deltawasp-2040-clay "$samples/meshes/bone-plug.stl" --pattern scaffold \
+  --nozzle 0.6 --gap 1 --perimeters 1
+slice bone-plug-tetrachiral deltawasp-2040-clay "$samples/meshes/bone-plug.stl" --pattern tetrachiral \
+  --nozzle 0.4 --cell 5 --node-core 1
+slice torus-scaffold deltawasp-2040-clay "$samples/meshes/torus.stl" --pattern scaffold --nozzle 0.84 --gap 1.6
+slice curved-plate-scaffold marlin-xyz-200 --onto "$samples/meshes/curved-plate.obj" --pattern scaffold \
+  --nozzle 0.6 --gap 1 --size 40x24 --layers 2
 for sweep in "$samples"/sweeps/*.json; do
   [ -e "$sweep" ] || continue
   "$strand" sweep "$sweep" -o "$(basename "$sweep" .json)"

@@ -3,11 +3,14 @@
 
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 
 namespace strand::slicer {
 
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
+// A closed polygon: the last point joins the first, which is not repeated.
+using Ring = std::vector<Vec2>;
 
 // z-component of the cross product a × b.
 double cross(const Vec2& a, const Vec2& b);

@@ -28,4 +28,12 @@ inline constexpr double kSpeedDeviation = 0.01;
 // Segments shorter than this are not speed-checked: the file's rounding dominates them, mm.
 inline constexpr double kSpeedCheckMinMm = 0.05;
 
+// A slicing plane that passes exactly through a mesh vertex is moved up by this much, so
+// every contour is a simple closed curve, mm (far below any layer height).
+inline constexpr double kSliceNudgeMm = 1e-7;
+// Clipper works on integers: coordinates are scaled by this many units per mm (0.01 um).
+inline constexpr double kClipperUnitsPerMm = 1e5;
+// Round joins of region offsets deviate from the true arc by at most this, mm.
+inline constexpr double kOffsetArcToleranceMm = 0.005;
+
 }  // namespace strand::slicer

@@ -13,5 +13,7 @@ constexpr double mm_per_min_to_mm_per_s(double f) { return f / 60.0; }
 constexpr double mm_per_s_to_mm_per_min(double v) { return v * 60.0; }
 constexpr double mm3_to_ml(double mm3) { return mm3 / 1000.0; }
 constexpr double kMmPerInch = 25.4;
+constexpr double kMmPerCm = 10.0;
+constexpr double kMmPerM = 1000.0;
 
 }  // namespace strand::slicer

@@ -48,8 +48,14 @@ std::vector<std::string> header(const slicer::Toolpath& t, const machines::Machi
 
 Produced produce(const slicer::Toolpath& t, const machines::MachineProfile& m,
                  const PlanOptions& options, const std::string& gcode_path, bool viewer_e) {
+  return produce_program(t, plan(t, m, options), m, options, gcode_path, viewer_e);
+}
+
+Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,
+                         const machines::MachineProfile& m, const PlanOptions& options,
+                         const std::string& gcode_path, bool viewer_e) {
   Produced out;
-  out.program = plan(t, m, options);
+  out.program = std::move(program);
   const Estimate e = estimate(out.program, m);
   out.report = make_report(t, m, e, gcode_path);
   out.report["parameters"]["arc-tolerance"] = options.arc_tolerance_mm;

@@ -24,5 +24,9 @@ struct Produced {
 Produced produce(const slicer::Toolpath& t, const machines::MachineProfile& m,
                  const PlanOptions& options, const std::string& gcode_path,
                  bool viewer_e = false);
+// The same from an already planned program (conformal printing plans through a surface).
+Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,
+                         const machines::MachineProfile& m, const PlanOptions& options,
+                         const std::string& gcode_path, bool viewer_e = false);
 
 }  // namespace strand::post

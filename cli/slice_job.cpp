@@ -1,0 +1,208 @@
+// The slice pipeline: read, check, place, slice, fill, produce.
+#include "cli/slice_job.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cli/job_runner.h"
+#include "machines/profile.h"
+#include "patterns/region_fill.h"
+#include "patterns/registry.h"
+#include "postprocess/plan/drape.h"
+#include "slicer/input_error.h"
+#include "slicer/mesh_io.h"
+#include "slicer/mesh_slicer.h"
+#include "slicer/mesh_surface.h"
+#include "slicer/params.h"
+
+namespace strand::cli {
+
+namespace {
+
+std::string pattern_names() {
+  std::string out;
+  for (const auto& g : patterns::generators()) out += (out.empty() ? "" : ", ") + g.name;
+  return out;
+}
+
+void check_settings(const SliceSettings& s) {
+  if (s.perimeters < 0 || s.perimeters > 20) {
+    throw InputError("slice.perimeters = " + std::to_string(s.perimeters) + ": must be in [0, 20]");
+  }
+  if (!(s.arc_tolerance_mm > 0.0 && s.arc_tolerance_mm <= 1.0)) {
+    throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
+                     ": must be in (0, 1] (mm)");
+  }
+}
+
+slicer::MeshPlacement placement_of(const SliceSettings& s) {
+  slicer::MeshPlacement placement;
+  placement.mm_per_unit = slicer::mm_per_mesh_unit("slice.mesh-units", s.mesh_units);
+  placement.place = slicer::placement_from("slice.place", s.place);
+  placement.rotate_deg = rotation_from_text(s.rotate);
+  return placement;
+}
+
+slicer::PreparedMesh load_part(const SliceSettings& s) {
+  const slicer::MeshPlacement placement = placement_of(s);
+  const slicer::Mesh raw = slicer::place_mesh(slicer::read_mesh_file(s.part), placement);
+  slicer::PreparedMesh part = slicer::prepare_mesh(raw, s.repair, "mesh = " + s.part);
+  // Repairs may add triangles at the extremes: rest the part on the bed again.
+  part.mesh = slicer::place_mesh(part.mesh, {1.0, slicer::Vec3::Zero(), placement.place});
+  return part;
+}
+
+// Before any slicing work: the part's bounding box against the build volume (the planner
+// checks every move again at the end).
+void check_part_fits(const slicer::Mesh& mesh, const machines::MachineProfile& m) {
+  const slicer::Vec3 size = slicer::bounds(mesh).size_mm();
+  const std::string part = slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) +
+                           " x " + slicer::short_number(size.z()) + " mm";
+  const auto& v = m.volume;
+  if (v.kind == machines::KinematicsKind::Delta) {
+    double r = 0.0;  // the part frame's origin sits on the build plate's centre
+    for (const slicer::Vec3& p : mesh.vertices_mm) r = std::max(r, p.head<2>().norm());
+    r = std::ceil(r * 10.0) / 10.0;
+    if (r > v.radius_mm + slicer::kBoundsSlackMm || size.z() > v.height_mm) {
+      throw InputError("slice: the part (" + part + ", reaching " + slicer::short_number(r) +
+                       " mm from the centre) does not fit " + m.name + " (radius " +
+                       slicer::short_number(v.radius_mm) + " mm, height " +
+                       slicer::short_number(v.height_mm) + " mm)");
+    }
+    return;
+  }
+  const slicer::Vec3 room = v.max_mm - v.min_mm;
+  if ((size.array() > room.array() + slicer::kBoundsSlackMm).any()) {
+    throw InputError("slice: the part (" + part + ") does not fit " + m.name + " (" +
+                     slicer::short_number(room.x()) + " x " + slicer::short_number(room.y()) +
+                     " x " + slicer::short_number(room.z()) + " mm)");
+  }
+}
+
+nlohmann::json slice_parameters(const SliceSettings& s, const patterns::RegionPattern& p) {
+  nlohmann::json j = p.values;
+  if (!s.part.empty()) j["part"] = s.part;
+  if (!s.onto.empty()) j["onto"] = s.onto;
+  j["pattern"] = s.pattern;
+  j["perimeters"] = s.perimeters;
+  j["mesh-units"] = s.mesh_units;
+  j["place"] = s.place;
+  j["rotate"] = s.rotate;
+  j["repair"] = s.repair;
+  return j;
+}
+
+// Layers for a part `height_mm` tall; throws InputError when the layers, or the pattern
+// segments to clip over all of them, exceed the work bounds.
+int layer_count(const patterns::RegionPattern& pattern, double height_mm,
+                const slicer::Vec2& half) {
+  const double layers_exact = height_mm / pattern.layer_height_mm;
+  if (layers_exact > kMaxSliceLayers) {
+    throw InputError("slice.layer-height = " + slicer::short_number(pattern.layer_height_mm) +
+                     ": the part (" + slicer::short_number(height_mm) +
+                     " mm tall) would need more than " + std::to_string(kMaxSliceLayers) +
+                     " layers");
+  }
+  const int layers = std::max(1, static_cast<int>(std::lround(layers_exact)));
+  double segments = 0.0;
+  for (const auto& line : patterns::pattern_lines(pattern, 0, half)) {
+    segments += static_cast<double>(line.points.size());
+  }
+  if (segments * layers > kMaxSliceSegments) {
+    throw InputError("slice: " + std::to_string(layers) + " layers of " +
+                     slicer::short_number(segments) +
+                     " pattern segments each is more work than allowed (" +
+                     slicer::short_number(kMaxSliceSegments) +
+                     " segments in all); use a coarser pattern or a larger layer height");
+  }
+  return layers;
+}
+
+// The part filled layer by layer.
+SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
+                       const machines::MachineProfile& machine) {
+  SliceResult r;
+  r.part = load_part(s);
+  const slicer::Box3 box = slicer::bounds(r.part.mesh);
+  const slicer::Vec3 size = box.size_mm();
+  check_part_fits(r.part.mesh, machine);
+  const slicer::Vec2 half(std::max(std::abs(box.min_mm.x()), std::abs(box.max_mm.x())),
+                          std::max(std::abs(box.min_mm.y()), std::abs(box.max_mm.y())));
+  const patterns::RegionPattern pattern = patterns::region_pattern(g, s.pattern_values, half);
+  const int layers = layer_count(pattern, size.z(), half);
+  patterns::PartFill fill;
+  fill.layers = slicer::slice_layers(r.part.mesh, pattern.layer_height_mm, layers);
+  fill.half_extent_mm = half;
+  fill.volume_mm3 = slicer::signed_volume_mm3(r.part.mesh);
+  fill.perimeters = s.perimeters;
+  r.toolpath = patterns::fill_part(fill, pattern);
+  r.toolpath.parameters = slice_parameters(s, pattern);
+  r.toolpath.derived["size_mm"] = {size.x(), size.y(), size.z()};
+  r.toolpath.derived["mesh_triangles"] = r.part.mesh.triangles.size();
+  r.toolpath.derived["mesh_repairs"] = r.part.changes;
+  r.produced = post::produce(r.toolpath, machine,
+                             post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output);
+  return r;
+}
+
+// The generator's specimen draped over the substrate (conformal, 3-axis).
+SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& g,
+                         const machines::MachineProfile& machine) {
+  SliceResult r;
+  r.toolpath = g.generate(slicer::resolve_params(g.table(), s.pattern_values));
+  const slicer::Mesh substrate =
+      slicer::place_mesh(slicer::read_mesh_file(s.onto), placement_of(s));
+  const slicer::MeshSurface surface(substrate, s.onto);
+  const post::PlanOptions options = post::plan_options_from(r.toolpath, s.arc_tolerance_mm);
+  slicer::MotionProgram program = post::plan_draped(r.toolpath, surface, machine, options);
+  r.toolpath.parameters["onto"] = s.onto;
+  r.toolpath.parameters["mesh-units"] = s.mesh_units;
+  r.toolpath.parameters["rotate"] = s.rotate;
+  r.toolpath.derived["substrate"] = surface.describe();
+  r.produced = post::produce_program(r.toolpath, std::move(program), machine, options, s.output);
+  return r;
+}
+
+}  // namespace
+
+slicer::Vec3 rotation_from_text(const std::string& text) {
+  std::vector<double> v;
+  std::size_t at = 0;
+  bool ok = true;
+  while (ok && at <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    const std::string part = text.substr(at, comma - at);
+    try {
+      std::size_t used = 0;
+      v.push_back(std::stod(part, &used));
+      ok = used == part.size() && std::isfinite(v.back()) && std::abs(v.back()) <= 360.0;
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    at = comma + 1;
+  }
+  if (!ok || v.size() != 3) {
+    throw InputError("slice.rotate = " + text + ": must be X,Y,Z in degrees, each in [-360, 360]");
+  }
+  return {v[0], v[1], v[2]};
+}
+
+SliceResult produce_slice(const SliceSettings& s) {
+  const patterns::GeneratorSpec* g = patterns::find_generator(s.pattern);
+  if (!g) throw InputError("slice.pattern = " + s.pattern + ": must be one of " + pattern_names());
+  check_settings(s);
+  if (s.part.empty() == s.onto.empty()) {
+    throw InputError(
+        "slice: give a part to fill or --onto SUBSTRATE to lay the pattern on, not both");
+  }
+  const machines::MachineProfile machine = machines::load_profile(s.machine);
+  if (machine.plotter.enabled) {
+    throw InputError("machine = " + s.machine +
+                     ": a pen plotter; slice needs a printer profile (strand machines lists them)");
+  }
+  SliceResult out = s.onto.empty() ? slice_part(s, *g, machine) : produce_onto(s, *g, machine);
+  vet_produced(out.produced, machine, s.arc_tolerance_mm);
+  return out;
+}
+
+}  // namespace strand::cli

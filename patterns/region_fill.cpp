@@ -1,0 +1,152 @@
+// Layer fills: wall check, perimeters, clipped and joined pattern, stroke order.
+#include "patterns/region_fill.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+
+#include "patterns/perimeter_splice.h"
+#include "patterns/region_join.h"
+#include "slicer/input_error.h"
+
+namespace strand::patterns {
+
+using slicer::Region;
+using slicer::Vec2;
+
+namespace {
+
+// Where a bead centred d/2 inside layer k's boundary cannot reach, over more than
+// 4 nozzle^2, and the layers below and above cover that place too (a wall, not the thin
+// rim at the top or bottom of a curved part): throws naming the place.
+void check_wall(const std::vector<Region>& layers, std::size_t k, double nozzle_mm, double z_mm) {
+  const double r = nozzle_mm / 2.0;
+  const Region& region = layers[k];
+  const Region reached = slicer::offset_region(slicer::offset_region(region, -r), r);
+  for (const auto& lost : slicer::region_difference(region, reached)) {
+    const double area = slicer::area_mm2(lost);
+    if (area <= 4.0 * nozzle_mm * nozzle_mm) continue;
+    bool wall = true;
+    for (const std::size_t j : {k - 1, k + 1}) {  // k - 1 wraps for k = 0: not a layer
+      wall = wall && j < layers.size() &&
+             slicer::area_mm2(slicer::region_intersection({lost}, layers[j])) > area / 2;
+    }
+    if (!wall) continue;
+    const auto [lo, hi] = slicer::region_bounds({lost});
+    const Vec2 c = (lo + hi) / 2.0;
+    char where[128];
+    std::snprintf(where, sizeof where, "(%.3f, %.3f, %.3f)", c.x(), c.y(), z_mm);
+    throw InputError("slice.nozzle = " + slicer::short_number(nozzle_mm) +
+                     ": wider than the part's wall near " + where + " (a strip of " +
+                     slicer::short_number(std::round(area * 10) / 10) +
+                     " mm2 no bead can fill); use a finer nozzle or thicken the wall");
+  }
+}
+
+slicer::Stroke ring_stroke(const slicer::Ring& ring, double width, double height) {
+  slicer::Stroke s;
+  s.start_mm = ring.front();
+  for (std::size_t i = 1; i <= ring.size(); ++i)
+    s.segments.push_back(slicer::line_to(ring[i % ring.size()], slicer::Feature::Wall));
+  s.width_mm = width;
+  s.height_mm = height;
+  return s;
+}
+
+double line_length(const PatternLine& l) {
+  double len = 0.0;
+  for (std::size_t i = 0; i + 1 < l.points.size(); ++i)
+    len += (l.points[i + 1] - l.points[i]).norm();
+  return len;
+}
+
+// Greedy order from `at`: the nearest start (or end, reversed) next.
+std::vector<slicer::Stroke> ordered(std::vector<slicer::Stroke> strokes, Vec2 at) {
+  std::vector<slicer::Stroke> out;
+  while (!strokes.empty()) {
+    std::size_t best = 0;
+    bool flip = false;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < strokes.size(); ++i) {
+      const double ds = (strokes[i].start_mm - at).norm(), de = (strokes[i].end_mm() - at).norm();
+      if (ds < best_d - 1e-9) best_d = ds, best = i, flip = false;
+      if (de < best_d - 1e-9) best_d = de, best = i, flip = true;
+    }
+    out.push_back(flip ? slicer::reversed(strokes[best]) : strokes[best]);
+    at = out.back().end_mm();
+    strokes.erase(strokes.begin() + static_cast<std::ptrdiff_t>(best));
+  }
+  return out;
+}
+
+}  // namespace
+
+LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, int perimeters,
+                     const Vec2& half) {
+  LayerFill out;
+  out.regions = static_cast<int>(region.size());
+  if (region.empty()) return out;
+  const double d = p.nozzle_mm, h = p.layer_height_mm;
+  std::vector<slicer::Stroke> inner;  // the innermost perimeter level, spliced in below
+  for (int k = 0; k < perimeters; ++k) {
+    for (const auto& ring : slicer::rings_of(slicer::offset_region(region, -(k + 0.5) * d))) {
+      (k + 1 == perimeters ? inner : out.strokes).push_back(ring_stroke(ring, d, h));
+    }
+  }
+  const RingSet rs =
+      ring_set(slicer::rings_of(slicer::offset_region(region, -(perimeters + 0.5) * d)));
+  std::vector<FillPiece> pieces;
+  for (FillPiece& piece : clip_to_rings(rs, pattern_lines(p, layer, half))) {
+    const double len = line_length(piece.line);
+    if (len < p.min_piece_mm) continue;  // a corner or a node grazed: a strand of its own otherwise
+    out.pattern_length_mm += len;
+    pieces.push_back(std::move(piece));
+  }
+  std::vector<slicer::Stroke> strands = join_pieces(rs, pieces, {p.connector, d, h});
+  out.pattern_strands = static_cast<int>(strands.size());
+  strands = splice_loops(std::move(inner), std::move(strands), d, out.strokes);
+  out.strokes.insert(out.strokes.end(), strands.begin(), strands.end());
+  return out;
+}
+
+slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p) {
+  slicer::Toolpath t;
+  t.generator = "slice";
+  nlohmann::json regions = nlohmann::json::array(), strands = nlohmann::json::array();
+  double deposited = 0.0, pattern_length = 0.0, region_area = 0.0;
+  Vec2 at = Vec2::Zero();
+  for (std::size_t k = 0; k < part.layers.size(); ++k) {
+    const double z = (static_cast<double>(k) + 1.0) * p.layer_height_mm;
+    check_wall(part.layers, k, p.nozzle_mm, z);
+    LayerFill f =
+        fill_layer(part.layers[k], p, static_cast<int>(k), part.perimeters, part.half_extent_mm);
+    slicer::Layer layer{z, p.layer_height_mm, ordered(std::move(f.strokes), at)};
+    if (!layer.strokes.empty()) at = layer.strokes.back().end_mm();
+    for (const auto& s : layer.strokes) deposited += slicer::stroke_length(s);
+    pattern_length += f.pattern_length_mm;
+    region_area += slicer::area_mm2(part.layers[k]);
+    regions.push_back(f.regions);
+    strands.push_back(f.pattern_strands);
+    t.layers.push_back(std::move(layer));
+  }
+  const double area = slicer::bead_area_mm2(p.nozzle_mm, p.layer_height_mm);
+  const double sliced_volume = region_area * p.layer_height_mm;
+  t.derived = {
+      {"pattern", p.name},
+      {"layers", part.layers.size()},
+      {"layer_height_mm", p.layer_height_mm},
+      {"regions_per_layer", regions},
+      {"pattern_strands_per_layer", strands},
+      {"part_volume_mm3", part.volume_mm3},
+      {"porosity", part.volume_mm3 > 0 ? 1.0 - deposited * area / part.volume_mm3 : 0.0},
+      {"porosity_formula", "1 - (deposited length * bead area) / part volume"},
+      {"pattern_porosity", p.porosity},
+      {"pattern_porosity_in_part",
+       sliced_volume > 0 ? 1.0 - pattern_length * area / sliced_volume : 0.0},
+      {"bead_area_mm2", area},
+  };
+  if (p.pitch_mm > 0) t.derived["pitch_mm"] = p.pitch_mm;
+  return t;
+}
+
+}  // namespace strand::patterns

@@ -1,0 +1,42 @@
+// Filling a sliced part: per layer, perimeter passes along the region's boundary, then the
+// pattern clipped to what is left and joined into as few non-crossing strands as the
+// region allows; the layers together make the part's Toolpath.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "patterns/region_pattern.h"
+#include "slicer/region.h"
+#include "slicer/toolpath.h"
+
+namespace strand::patterns {
+
+struct LayerFill {
+  // Outer perimeter levels, then the pattern strands with the innermost perimeter loops
+  // spliced into them where a strand ends beside one (patterns/perimeter_splice.h), then
+  // the loops left over.
+  std::vector<slicer::Stroke> strokes;
+  int regions = 0;                 // connected parts of the layer's region
+  int pattern_strands = 0;         // strands of the pattern (perimeters excluded)
+  double pattern_length_mm = 0.0;  // pattern pieces alone, joins excluded
+};
+
+LayerFill fill_layer(const slicer::Region& region, const RegionPattern& p, int layer,
+                     int perimeters, const slicer::Vec2& half_extent_mm);
+
+struct PartFill {
+  std::vector<slicer::Region> layers;  // layer k's region, layer k at z = (k + 1) h
+  slicer::Vec2 half_extent_mm = slicer::Vec2::Zero();
+  double volume_mm3 = 0.0;  // the part's volume, for the deposited porosity
+  int perimeters = 0;
+};
+
+// The part's toolpath (generator "slice"); derived: layers, regions and pattern strands per
+// layer, deposited porosity inside the part, the pattern's own porosity. Throws InputError
+// when the nozzle is wider than the part's wall somewhere: more than 4 nozzle^2 of a layer
+// that no bead reaches, where the layers below and above also cover it (so the thin rim
+// at the top or bottom of a curved part is not a wall), naming where.
+slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p);
+
+}  // namespace strand::patterns

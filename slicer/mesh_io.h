@@ -1,0 +1,37 @@
+// Reading part and substrate meshes: STL (ASCII and binary), OBJ, PLY and OFF through
+// OpenMesh, glTF and GLB through tinygltf; then units, rotation and placement.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "slicer/mesh.h"
+
+namespace strand::slicer {
+
+// Triangles accepted after reading (files are bounded by kMaxInputBytes before): no input
+// may exhaust memory.
+inline constexpr std::size_t kMaxMeshTriangles = 4'000'000;
+
+// The mesh as stored in the file (file units, file frame). Throws InputError for a missing,
+// unreadable, unknown-format, empty or too large file, and for non-finite coordinates.
+Mesh read_mesh_file(const std::string& path);
+
+enum class Placement {
+  Center,  // bounding-box centre at x = y = 0 (the machine's part centre), resting on z = 0
+  Origin,  // the file's x/y origin at the part centre, resting on z = 0
+};
+
+struct MeshPlacement {
+  double mm_per_unit = 1.0;        // --mesh-units: mm 1, cm 10, m 1000, in 25.4
+  Vec3 rotate_deg = Vec3::Zero();  // about x, then y, then z (fixed axes, file origin)
+  Placement place = Placement::Center;
+};
+
+// "mm", "cm", "m", "in" -> mm per unit; throws InputError naming `key` otherwise.
+double mm_per_mesh_unit(const std::string& key, const std::string& units);
+Placement placement_from(const std::string& key, const std::string& name);
+// Scales, rotates and places the mesh as the part frame expects (bottom at z = 0).
+Mesh place_mesh(Mesh m, const MeshPlacement& placement);
+
+}  // namespace strand::slicer

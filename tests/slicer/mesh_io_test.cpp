@@ -1,0 +1,155 @@
+// Mesh files: every format reads to the same triangles, units and placement apply, bad
+// files fail with one InputError naming the file.
+#include "slicer/mesh_io.h"
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include <cmath>
+
+#include "slicer/file_io.h"
+#include "slicer/input_error.h"
+#include "slicer/units.h"
+#include "tests/support/cli_runner.h"
+#include "tests/support/mesh_shapes.h"
+
+namespace strand::slicer {
+namespace {
+
+using testing::box_mesh;
+
+// ASCII PLY, written here (the reader's only PLY user).
+void write_ply(const Mesh& m, const std::string& path) {
+  std::string out = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(m.vertices_mm.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                    std::to_string(m.triangles.size()) +
+                    "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (const Vec3& v : m.vertices_mm) {
+    out += std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + "\n";
+  }
+  for (const auto& t : m.triangles) {
+    out += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+  }
+  write_file_atomic(path, out);
+}
+
+TEST(MeshIo, EveryOpenMeshFormatReadsTheSameBox) {
+  const auto dir = testing::fresh_dir("mesh-io");
+  const Mesh box = box_mesh(Vec3(10, 20, 30));
+  testing::write_binary_stl(box, dir + "/b.stl");
+  testing::write_ascii_stl(box, dir + "/a.stl");
+  testing::write_obj(box, dir + "/o.obj");
+  testing::write_off(box, dir + "/f.off");
+  testing::write_binary_stl(box, dir + "/UPPER.STL");
+  write_ply(box, dir + "/p.ply");
+  for (const char* name : {"b.stl", "a.stl", "o.obj", "f.off", "UPPER.STL", "p.ply"}) {
+    const Mesh m = read_mesh_file(dir + "/" + name);
+    EXPECT_EQ(m.triangles.size(), 12u) << name;
+    EXPECT_EQ(m.vertices_mm.size(), 8u) << name << ": STL corners are merged";
+    EXPECT_NEAR(signed_volume_mm3(m), 6000.0, 1e-6) << name;
+  }
+}
+
+TEST(MeshIo, ObjTextureCoordinatesAreKept) {
+  const auto dir = testing::fresh_dir("mesh-uv");
+  const Mesh plate = testing::plate_mesh(20, 10, 1, 4, 2);
+  testing::write_obj(plate, dir + "/p.obj");
+  const Mesh m = read_mesh_file(dir + "/p.obj");
+  ASSERT_EQ(m.uv.size(), m.vertices_mm.size());
+  for (std::size_t i = 0; i < m.uv.size(); ++i) {
+    EXPECT_NEAR(m.uv[i].x(), m.vertices_mm[i].x(), 1e-6);
+    EXPECT_NEAR(m.uv[i].y(), m.vertices_mm[i].y(), 1e-6);
+  }
+}
+
+// A one-triangle-pair glTF written with tinygltf: +Y up in the file becomes +Z up.
+TEST(MeshIo, GlbIsReadWithYUpTurnedToZUp) {
+  const auto dir = testing::fresh_dir("mesh-glb");
+  tinygltf::Model g;
+  const float pos[] = {0, 0, 0, 1, 0, 0, 0, 5, 0};  // a triangle standing 5 up in +Y
+  tinygltf::Buffer buf;
+  buf.data.resize(sizeof pos);
+  std::memcpy(buf.data.data(), pos, sizeof pos);
+  g.buffers.push_back(buf);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteLength = sizeof pos;
+  g.bufferViews.push_back(view);
+  tinygltf::Accessor acc;
+  acc.bufferView = 0;
+  acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  acc.type = TINYGLTF_TYPE_VEC3;
+  acc.count = 3;
+  acc.minValues = {0, 0, 0};
+  acc.maxValues = {1, 5, 0};
+  g.accessors.push_back(acc);
+  tinygltf::Primitive prim;
+  prim.attributes["POSITION"] = 0;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  tinygltf::Mesh mesh;
+  mesh.primitives.push_back(prim);
+  g.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.translation = {10, 0, 0};
+  g.nodes.push_back(node);
+  g.scenes.push_back(tinygltf::Scene{});
+  g.scenes[0].nodes = {0};
+  g.defaultScene = 0;
+  tinygltf::TinyGLTF writer;
+  ASSERT_TRUE(writer.WriteGltfSceneToFile(&g, dir + "/t.glb", true, true, false, true));
+  const Mesh m = read_mesh_file(dir + "/t.glb");
+  ASSERT_EQ(m.triangles.size(), 1u);
+  const Box3 b = bounds(m);
+  EXPECT_NEAR(b.min_mm.x(), 10.0, 1e-6);
+  EXPECT_NEAR(b.max_mm.z(), 5.0, 1e-6) << "glTF's +Y is Strand's +Z";
+}
+
+TEST(MeshIo, UnitsRotationAndPlacement) {
+  Mesh box = box_mesh(Vec3(1, 2, 3));
+  for (Vec3& v : box.vertices_mm) v += Vec3(5, 5, 5);
+  const Mesh cm = place_mesh(box, {kMmPerCm, Vec3::Zero(), Placement::Center});
+  const Box3 b = bounds(cm);
+  EXPECT_TRUE(b.min_mm.isApprox(Vec3(-5, -10, 0)));
+  EXPECT_TRUE(b.max_mm.isApprox(Vec3(5, 10, 30)));
+  const Mesh turned = place_mesh(box, {1.0, Vec3(90, 0, 0), Placement::Center});
+  EXPECT_NEAR(bounds(turned).size_mm().z(), 2.0, 1e-9) << "y became z";
+  const Mesh origin = place_mesh(box, {1.0, Vec3::Zero(), Placement::Origin});
+  EXPECT_NEAR(bounds(origin).min_mm.x(), 5.0, 1e-12) << "x/y kept";
+  EXPECT_NEAR(bounds(origin).min_mm.z(), 0.0, 1e-12) << "always on the bed";
+  EXPECT_EQ(mm_per_mesh_unit("u", "in"), 25.4);
+  EXPECT_THROW(mm_per_mesh_unit("u", "ft"), InputError);
+}
+
+std::string error_of(const std::string& path) {
+  try {
+    read_mesh_file(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(MeshIo, BadFilesFailWithOneLineNamingTheFile) {
+  const auto dir = testing::fresh_dir("mesh-bad");
+  write_file_atomic(dir + "/empty.stl", "");
+  write_file_atomic(dir + "/junk.stl", "this is not a mesh at all\n");
+  write_file_atomic(dir + "/x.3mf", "PK");
+  Mesh nan_box = box_mesh(Vec3(1, 1, 1));
+  nan_box.vertices_mm[3].y() = std::nan("");
+  testing::write_binary_stl(nan_box, dir + "/nan.stl");
+  write_file_atomic(dir + "/bad.gltf", "{ not json");
+  EXPECT_NE(error_of(dir + "/missing.stl").find("no such file"), std::string::npos);
+  EXPECT_NE(error_of(dir + "/empty.stl").find("empty"), std::string::npos);
+  EXPECT_FALSE(error_of(dir + "/junk.stl").empty());
+  EXPECT_NE(error_of(dir + "/x.3mf").find("unknown format"), std::string::npos);
+  EXPECT_NE(error_of(dir + "/bad.gltf").find("glTF"), std::string::npos);
+  const std::string nan = error_of(dir + "/nan.stl");
+  EXPECT_NE(nan.find("has a non-finite coordinate"), std::string::npos) << nan;
+  for (const char* f : {"missing.stl", "empty.stl", "junk.stl", "x.3mf", "nan.stl", "bad.gltf"}) {
+    EXPECT_EQ(error_of(dir + "/" + f).find('\n'), std::string::npos) << f;
+  }
+}
+
+}  // namespace
+}  // namespace strand::slicer

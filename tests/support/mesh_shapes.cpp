@@ -1,0 +1,181 @@
+// Test meshes built from their parametric surfaces; writers in the formats the reader takes.
+#include "tests/support/mesh_shapes.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "slicer/file_io.h"
+#include "slicer/units.h"
+
+namespace strand::testing {
+
+using slicer::Mesh;
+using slicer::Vec3;
+
+namespace {
+
+void quad(Mesh& m, int a, int b, int c, int d) {  // a-b-c-d counter-clockwise from outside
+  m.triangles.push_back({a, b, c});
+  m.triangles.push_back({a, c, d});
+}
+
+int add(Mesh& m, const Vec3& v) {
+  m.vertices_mm.push_back(v);
+  return static_cast<int>(m.vertices_mm.size()) - 1;
+}
+
+Vec3 normal_of(const Mesh& m, const std::array<int, 3>& t) {
+  const Vec3 n =
+      (m.vertices_mm[t[1]] - m.vertices_mm[t[0]]).cross(m.vertices_mm[t[2]] - m.vertices_mm[t[0]]);
+  return n.norm() > 0 ? Vec3(n.normalized()) : Vec3::UnitZ();
+}
+
+}  // namespace
+
+Mesh box_mesh(const Vec3& s) {
+  Mesh m;
+  for (int i = 0; i < 8; ++i)
+    add(m, Vec3((i & 1) ? s.x() : 0, (i & 2) ? s.y() : 0, (i & 4) ? s.z() : 0));
+  quad(m, 0, 2, 3, 1);  // bottom (z = 0), seen from below
+  quad(m, 4, 5, 7, 6);  // top
+  quad(m, 0, 1, 5, 4);  // y = 0
+  quad(m, 2, 6, 7, 3);  // y = max
+  quad(m, 0, 4, 6, 2);  // x = 0
+  quad(m, 1, 3, 7, 5);  // x = max
+  return m;
+}
+
+Mesh tube_mesh(double r, double bore, double h, int n) {
+  Mesh m;
+  auto ring = [&](double radius, double z) {
+    const int first = static_cast<int>(m.vertices_mm.size());
+    for (int i = 0; i < n; ++i) {
+      const double a = slicer::kTwoPi * i / n;
+      add(m, Vec3(radius * std::cos(a), radius * std::sin(a), z));
+    }
+    return first;
+  };
+  const int ob = ring(r, 0.0), ot = ring(r, h);
+  for (int i = 0; i < n; ++i) quad(m, ob + i, ob + (i + 1) % n, ot + (i + 1) % n, ot + i);
+  if (bore > 0) {
+    const int ib = ring(bore, 0.0), it = ring(bore, h);
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n;
+      quad(m, ib + j, ib + i, it + i, it + j);  // inner wall faces the axis
+      quad(m, ot + i, ot + j, it + j, it + i);  // top annulus
+      quad(m, ob + j, ob + i, ib + i, ib + j);  // bottom annulus
+    }
+    return m;
+  }
+  const int cb = add(m, Vec3(0, 0, 0)), ct = add(m, Vec3(0, 0, h));
+  for (int i = 0; i < n; ++i) {
+    m.triangles.push_back({cb, ob + (i + 1) % n, ob + i});
+    m.triangles.push_back({ct, ot + i, ot + (i + 1) % n});
+  }
+  return m;
+}
+
+Mesh torus_mesh(double R, double r, int nu, int nv) {
+  Mesh m;
+  for (int i = 0; i < nu; ++i) {
+    const double u = slicer::kTwoPi * i / nu;
+    for (int j = 0; j < nv; ++j) {
+      const double v = slicer::kTwoPi * j / nv;
+      const double w = R + r * std::cos(v);
+      add(m, Vec3(w * std::cos(u), w * std::sin(u), r + r * std::sin(v)));
+    }
+  }
+  auto id = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
+  for (int i = 0; i < nu; ++i) {
+    for (int j = 0; j < nv; ++j) quad(m, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+  }
+  return m;
+}
+
+Mesh plate_mesh(double w, double d, double sag, int nx, int ny) {
+  Mesh m;
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      const double x = -w / 2 + w * i / nx, y = -d / 2 + d * j / ny;
+      add(m, Vec3(x, y, sag * (1.0 - 2.0 * (x * x + y * y) / (w * w + d * d))));
+      m.uv.emplace_back(x, y);
+    }
+  }
+  auto id = [&](int i, int j) { return j * (nx + 1) + i; };
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) quad(m, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+  }
+  return m;
+}
+
+void write_binary_stl(const Mesh& m, const std::string& path) {
+  const std::string title = "strand test mesh (mm)";
+  std::string out = title + std::string(80 - title.size(), ' ');  // the 80-byte header
+  auto put = [&](const void* p, std::size_t n) { out.append(static_cast<const char*>(p), n); };
+  const std::uint32_t count = static_cast<std::uint32_t>(m.triangles.size());
+  put(&count, 4);
+  for (const auto& t : m.triangles) {
+    const Vec3 n = normal_of(m, t);
+    for (int k = 0; k < 3; ++k) {
+      const float f = static_cast<float>(n[k]);
+      put(&f, 4);
+    }
+    for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < 3; ++k) {
+        const float f = static_cast<float>(m.vertices_mm[t[c]][k]);
+        put(&f, 4);
+      }
+    }
+    const std::uint16_t attr = 0;
+    put(&attr, 2);
+  }
+  slicer::write_file_atomic(path, out);
+}
+
+void write_ascii_stl(const Mesh& m, const std::string& path) {
+  std::ostringstream o;
+  o.precision(9);
+  o << "solid strand\n";
+  for (const auto& t : m.triangles) {
+    const Vec3 n = normal_of(m, t);
+    o << "facet normal " << n.x() << " " << n.y() << " " << n.z() << "\n outer loop\n";
+    for (int c = 0; c < 3; ++c) {
+      const Vec3& v = m.vertices_mm[t[c]];
+      o << "  vertex " << v.x() << " " << v.y() << " " << v.z() << "\n";
+    }
+    o << " endloop\nendfacet\n";
+  }
+  o << "endsolid strand\n";
+  slicer::write_file_atomic(path, o.str());
+}
+
+void write_obj(const Mesh& m, const std::string& path) {
+  std::ostringstream o;
+  o.precision(9);
+  for (const Vec3& v : m.vertices_mm) o << "v " << v.x() << " " << v.y() << " " << v.z() << "\n";
+  for (const auto& t : m.uv) o << "vt " << t.x() << " " << t.y() << "\n";
+  for (const auto& t : m.triangles) {
+    o << "f";
+    for (int c = 0; c < 3; ++c) {
+      o << " " << t[c] + 1;
+      if (!m.uv.empty()) o << "/" << t[c] + 1;
+    }
+    o << "\n";
+  }
+  slicer::write_file_atomic(path, o.str());
+}
+
+void write_off(const Mesh& m, const std::string& path) {
+  std::ostringstream o;
+  o.precision(9);
+  o << "OFF\n" << m.vertices_mm.size() << " " << m.triangles.size() << " 0\n";
+  for (const Vec3& v : m.vertices_mm) o << v.x() << " " << v.y() << " " << v.z() << "\n";
+  for (const auto& t : m.triangles) o << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
+  slicer::write_file_atomic(path, o.str());
+}
+
+}  // namespace strand::testing

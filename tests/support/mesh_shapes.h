@@ -1,0 +1,28 @@
+// Closed triangle meshes with known geometry for tests, benchmarks and the sample files:
+// boxes, tubes (cylinders with an optional bore), tori, a curved plate, and writers.
+#pragma once
+
+#include <string>
+
+#include "slicer/mesh.h"
+
+namespace strand::testing {
+
+// Axis-aligned box from (0, 0, 0) to size, 12 triangles, outward.
+slicer::Mesh box_mesh(const slicer::Vec3& size_mm);
+// Cylinder along z from z = 0 to height, radius r, `segments` around; with bore_mm > 0 a
+// coaxial hole of that radius runs through it. Vertices lie on the true circles.
+slicer::Mesh tube_mesh(double radius_mm, double bore_mm, double height_mm, int segments);
+// Torus around the z axis resting on z = 0: ring radius R, tube radius r.
+slicer::Mesh torus_mesh(double ring_mm, double tube_mm, int ring_segments, int tube_segments);
+// Open height field z = f(x, y) over [-w/2, w/2] x [-d/2, d/2] with per-vertex UVs equal to
+// (x, y): a gently curved plate substrate, z = sag * (1 - (x^2 + y^2) / (w^2 + d^2) * 2).
+slicer::Mesh plate_mesh(double width_mm, double depth_mm, double sag_mm, int nx, int ny);
+
+void write_binary_stl(const slicer::Mesh& m, const std::string& path);
+void write_ascii_stl(const slicer::Mesh& m, const std::string& path);
+// OBJ with vt lines when the mesh has UVs.
+void write_obj(const slicer::Mesh& m, const std::string& path);
+void write_off(const slicer::Mesh& m, const std::string& path);
+
+}  // namespace strand::testing
