@@ -3,7 +3,7 @@
 
 DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev libcli11-dev \
                    libgtest-dev libbenchmark-dev libpugixml-dev libpolyclipping-dev libtbb-dev \
-                   libcairo2-dev libtinygltf-dev chromium
+                   libcairo2-dev libtinygltf-dev libcgal-dev chromium
 MAKEFLAGS += --no-print-directory
 BUILD_DIR := build
 STRAND := $(BUILD_DIR)/cli/strand
