@@ -1,6 +1,8 @@
 // Job parsing and the generate-plan-emit-write chain, shared by every command that runs jobs.
 #include "cli/job_runner.h"
 
+#include <optional>
+
 #include "machines/profile.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -57,17 +59,35 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   return s;
 }
 
-post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
-                           const JobSettings& s) {
+namespace {
+
+struct Prepared {
+  slicer::Toolpath toolpath;
+  machines::MachineProfile machine;
+  post::PlanOptions options;
+};
+
+// Everything a job checks before planning: arc tolerance, parameters, machine.
+Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
+                 const JobSettings& s) {
   if (!(s.arc_tolerance_mm > 0.0 && s.arc_tolerance_mm <= 1.0)) {
     throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
                      ": must be in (0, 1] (mm)");
   }
   const nlohmann::json values = slicer::resolve_params(generator.table(), params);
-  const slicer::Toolpath t = generator.generate(values);
-  const machines::MachineProfile machine = machines::load_profile(s.machine);
-  return post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm),
-                       job_output_path(generator, s), s.viewer_e);
+  Prepared p{generator.generate(values), {}, {}};
+  p.machine = machines::load_profile(s.machine);
+  p.options = post::plan_options_from(p.toolpath, s.arc_tolerance_mm);
+  return p;
+}
+
+}  // namespace
+
+post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
+                           const JobSettings& s) {
+  Prepared p = prepare(generator, params, s);
+  return post::produce(std::move(p.toolpath), p.machine, p.options, job_output_path(generator, s),
+                       s.viewer_e);
 }
 
 std::string viewer_output_path(const std::string& out) {
@@ -83,13 +103,21 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& s) {
-  post::Produced produced = produce_job(generator, params, s);
-  const std::string report = produced.report.dump(2) + "\n";
-  slicer::write_file_atomic(job_output_path(generator, s), produced.gcode);
-  if (s.viewer_e) {
-    slicer::write_file_atomic(viewer_output_path(job_output_path(generator, s)), produced.viewer_gcode);
-  }
-  if (!s.report.empty()) slicer::write_file_atomic(s.report, report);
+  Prepared p = prepare(generator, params, s);
+  // G-code streams into temp files as it is formatted; all are renamed at the end, and an
+  // error midway (a part that does not fit) leaves no output at all.
+  const std::string path = job_output_path(generator, s);
+  slicer::AtomicFile gcode(path);
+  std::optional<slicer::AtomicFile> viewer;
+  if (s.viewer_e) viewer.emplace(viewer_output_path(path));
+  std::optional<slicer::AtomicFile> report;
+  if (!s.report.empty()) report.emplace(s.report);
+  post::Produced produced = post::produce(std::move(p.toolpath), p.machine, p.options, path,
+                                          s.viewer_e, {&gcode.out(), viewer ? &viewer->out() : nullptr});
+  if (report) report->out() << produced.report.dump(2) << "\n";
+  gcode.commit();
+  if (viewer) viewer->commit();
+  if (report) report->commit();
   return produced;
 }
 

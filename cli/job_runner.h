@@ -43,7 +43,8 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 // "out/x.gcode" -> "out/x.viewer-e.gcode": the preview-only copy beside the printable file.
 std::string viewer_output_path(const std::string& gcode_path);
 
-// produce_job, then writes the G-code (report, viewer copy) atomically; returns what was produced.
+// produce_job, but the G-code (and viewer copy) streams into the files as it is formatted
+// (Produced::gcode stays empty); every file appears at the end, or none on an error.
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& settings);
 

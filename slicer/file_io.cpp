@@ -3,7 +3,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <system_error>
 
@@ -11,29 +10,41 @@
 
 namespace strand::slicer {
 
-void write_file_atomic(const std::string& path, const std::string& content) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  fs::path tmp = target;
-  tmp += ".strand-tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError("output = " + path + ": cannot write here (check the directory)");
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.flush();
-    if (!out) {
-      out.close();
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw InputError("output = " + path + ": write failed (disk full?)");
-    }
-  }
+namespace fs = std::filesystem;
+
+AtomicFile::AtomicFile(const std::string& path) : path_(path), tmp_(path + ".strand-tmp") {
+  out_.open(tmp_, std::ios::binary | std::ios::trunc);
+  if (!out_) throw InputError("output = " + path + ": cannot write here (check the directory)");
+}
+
+AtomicFile::~AtomicFile() {
+  if (done_) return;
+  out_.close();
   std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) {
-    fs::remove(tmp, ec);
-    throw InputError("output = " + path + ": cannot rename the finished file into place");
+  fs::remove(tmp_, ec);
+}
+
+void AtomicFile::commit() {
+  out_.flush();
+  const bool written = static_cast<bool>(out_);
+  out_.close();
+  done_ = true;
+  std::error_code ec;
+  if (!written) {
+    fs::remove(tmp_, ec);
+    throw InputError("output = " + path_ + ": write failed (disk full?)");
   }
+  fs::rename(tmp_, path_, ec);
+  if (ec) {
+    fs::remove(tmp_, ec);
+    throw InputError("output = " + path_ + ": cannot rename the finished file into place");
+  }
+}
+
+void write_file_atomic(const std::string& path, const std::string& content) {
+  AtomicFile file(path);
+  file.out().write(content.data(), static_cast<std::streamsize>(content.size()));
+  file.commit();
 }
 
 std::string read_file(const std::string& path) {

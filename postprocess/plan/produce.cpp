@@ -46,20 +46,29 @@ std::vector<std::string> header(const slicer::Toolpath& t, const machines::Machi
 
 }  // namespace
 
-Produced produce(const slicer::Toolpath& t, const machines::MachineProfile& m,
-                 const PlanOptions& options, const std::string& gcode_path, bool viewer_e) {
+Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
+                 const PlanOptions& options, const std::string& gcode_path, bool viewer_e,
+                 const GcodeStreams& streams) {
   Produced out;
-  out.program = plan(t, m, options);
+  out.program = plan_and_release(t, m, options);
   const Estimate e = estimate(out.program, m);
   out.report = make_report(t, m, e, gcode_path);
   out.report["parameters"]["arc-tolerance"] = options.arc_tolerance_mm;
   out.summary = summary_text(out.report);
   machines::EmitOptions eo;
   eo.header = header(t, m, options, out.report);
-  out.gcode = machines::emit_gcode(out.program, m, eo);
+  if (streams.gcode) {
+    machines::emit_gcode(out.program, m, eo, *streams.gcode);
+  } else {
+    out.gcode = machines::emit_gcode(out.program, m, eo);
+  }
   if (viewer_e) {
     eo.viewer_e = true;
-    out.viewer_gcode = machines::emit_gcode(out.program, m, eo);
+    if (streams.viewer_gcode) {
+      machines::emit_gcode(out.program, m, eo, *streams.viewer_gcode);
+    } else {
+      out.viewer_gcode = machines::emit_gcode(out.program, m, eo);
+    }
   }
   return out;
 }
