@@ -141,10 +141,10 @@ class Writer {
     if (mv.layer >= 0 && mv.layer != layer_) layer_change(mv.layer, p);
     switch (mv.kind) {
       case MoveKind::Raw:
-        out_ += mv.text;
+        out_ += slicer::raw_text(p, mv);
         out_ += '\n';
         break;
-      case MoveKind::Dwell: dwell(mv.dwell_s); break;
+      case MoveKind::Dwell: dwell(slicer::dwell_seconds(p, mv)); break;
       case MoveKind::Travel: travel(mv); break;
       case MoveKind::Deposit: deposit(mv); break;
     }
@@ -254,10 +254,19 @@ class Writer {
     e_step(volume_mm3 / mm3_per_e);
   }
 
-  // Axis words that changed (X and Y always on arcs), 3 decimals.
+  // Axis words that changed (X and Y always on arcs), 3 decimals. A value equal to the last
+  // one needs no formatting to know its text is the same.
   void axes(const Move& mv) {
     static constexpr const char* kNames[3] = {" X", " Y", " Z"};
     for (int i = 0; i < 3; ++i) {
+      if (mv.end_mm[i] == last_value_[i] && last_[i].size > 0) {
+        if (mv.is_arc && i < 2) {
+          out_ += kNames[i];
+          out_ += last_[i].view();
+        }
+        continue;
+      }
+      last_value_[i] = mv.end_mm[i];
       Word v;
       v.size = fixed_chars(v.text, mv.end_mm[i], 3);
       if (!(v == last_[i]) || (mv.is_arc && i < 2)) {
@@ -326,6 +335,7 @@ class Writer {
   bool feature_written_ = false;
   double width_ = -1.0;
   Word last_[3];
+  double last_value_[3] = {0.0, 0.0, 0.0};  // the value last_ was formatted from
   std::string feed_;
   slicer::Vec3 at_ = slicer::Vec3::Zero();
 };

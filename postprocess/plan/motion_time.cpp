@@ -35,7 +35,7 @@ std::vector<double> dwell_by_layer(const slicer::MotionProgram& p, const TimeOpt
   for (const auto& mv : p.moves) {
     const auto bucket = static_cast<std::size_t>(std::clamp(mv.layer + 1, 0, static_cast<int>(p.layers.size())));
     if (mv.kind == MoveKind::Dwell || mv.kind == MoveKind::Raw) {
-      dwell[bucket] += mv.kind == MoveKind::Dwell ? mv.dwell_s : 0.0;
+      dwell[bucket] += mv.kind == MoveKind::Dwell ? slicer::dwell_seconds(p, mv) : 0.0;
       continue;
     }
     if (mv.kind == MoveKind::Deposit && !mv.coast && flow == 0) dwell[bucket] += o.strand_start_dwell_s;

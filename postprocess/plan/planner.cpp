@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include "postprocess/plan/arc_segmentation.h"
 #include "postprocess/plan/placement.h"
@@ -20,6 +23,17 @@ using slicer::Vec3;
 
 namespace {
 
+// Freed toolpath layers go back to the OS every this many layers (see return_freed_memory).
+constexpr std::size_t kTrimEveryLayers = 64;
+
+// glibc keeps freed small blocks mapped, so without this a released toolpath still counts in
+// the peak memory next to the program that replaces it; elsewhere a no-op.
+void return_freed_memory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
+}
+
 class Planner {
  public:
   Planner(const machines::MachineProfile& m, const PlanOptions& o) : m_(m), o_(o) {}
@@ -34,7 +48,10 @@ class Planner {
       p_.layers.push_back({layer.z_mm, layer.height_mm});
       layer_ = static_cast<int>(li);
       for (const auto& stroke : layer.strokes) add_stroke(stroke, layer.z_mm);
-      if (release) std::vector<slicer::Stroke>().swap((*release)[li].strokes);
+      if (release) {
+        std::vector<slicer::Stroke>().swap((*release)[li].strokes);
+        if (li % kTrimEveryLayers == kTrimEveryLayers - 1) return_freed_memory();
+      }
     }
     return std::move(p_);
   }
@@ -114,7 +131,17 @@ class Planner {
 
   // Base speed x feature factor (job first, then profile), capped by the machine's feed
   // and, on E-driven machines, by its volumetric flow over the bead section.
-  double feed_for(Feature f, double area_mm2) const {
+  double feed_for(Feature f, double area_mm2) {
+    // Consecutive segments nearly always share feature and bead: skip the table lookups.
+    if (cached_ && f == cached_feature_ && area_mm2 == cached_area_) return cached_feed_;
+    cached_ = true;
+    cached_feature_ = f;
+    cached_area_ = area_mm2;
+    cached_feed_ = feed_uncached(f, area_mm2);
+    return cached_feed_;
+  }
+
+  double feed_uncached(Feature f, double area_mm2) const {
     double factor = 1.0;
     if (auto it = o_.speed_factors.find(f); it != o_.speed_factors.end()) {
       factor = it->second;
@@ -167,6 +194,10 @@ class Planner {
   Vec3 pos_ = Vec3::Zero();
   bool started_ = false;
   int layer_ = -1;
+  bool cached_ = false;
+  Feature cached_feature_ = Feature::Infill;
+  double cached_area_ = 0.0;
+  double cached_feed_ = 0.0;
 };
 
 }  // namespace
