@@ -3,13 +3,13 @@
 
 DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev libcli11-dev \
                    libgtest-dev libbenchmark-dev libpugixml-dev libpolyclipping-dev libtbb-dev \
-                   libcairo2-dev libtinygltf-dev libcgal-dev chromium
+                   libcairo2-dev libtinygltf-dev libcgal-dev chromium python3
 MAKEFLAGS += --no-print-directory
 BUILD_DIR := build
 STRAND := $(BUILD_DIR)/cli/strand
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release $(if $(CI),-DSTRAND_WERROR=ON,)
 
-.PHONY: all deps build run test bench clean
+.PHONY: all deps build run test bench bench-micro clean
 
 all: build
 
@@ -37,7 +37,12 @@ run: build
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$$(nproc)
 
+# One table of the issue-13 figures (cpu, memory per move/stroke, pen-up travel, check and
+# sweep times) from the strand program; bench-micro runs the Google Benchmark programs.
 bench: build
+	@python3 tests/bench/bench_table.py $(STRAND)
+
+bench-micro: build
 	@$(BUILD_DIR)/tests/bench/strand_bench
 
 clean:

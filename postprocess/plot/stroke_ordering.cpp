@@ -46,10 +46,29 @@ class Tour {
   }
   double d(const Vec2& a, const Vec2& b) const { return (a - b).norm(); }
   Vec2 ends_point(int e) const { return ends_[e]; }
+  // Reverses positions i..j and turns each of those strokes round, in one pass.
   void reverse_block(int i, int j) {
-    for (int k = i; k <= j; ++k) rev_[order_[k]] ^= 1;
-    for (int a = i, b = j; a < b; ++a, --b) std::swap(order_[a], order_[b]);
-    for (int k = i; k <= j; ++k) pos_[order_[k]] = k;
+    for (int a = i, b = j; a <= b; ++a, --b) {
+      const int sa = order_[a], sb = order_[b];
+      order_[a] = sb;
+      order_[b] = sa;
+      pos_[sb] = a;
+      pos_[sa] = b;
+      rev_[sa] ^= 1;
+      if (a != b) rev_[sb] ^= 1;
+    }
+  }
+  // Moves the stroke at position m to position to, keeping its direction; the strokes
+  // between shift by one.
+  void shift(int m, int to) {
+    const int s = order_[m];
+    if (to > m) {
+      for (int k = m; k < to; ++k) pos_[order_[k] = order_[k + 1]] = k;
+    } else {
+      for (int k = m; k > to; --k) pos_[order_[k] = order_[k - 1]] = k;
+    }
+    order_[to] = s;
+    pos_[s] = to;
   }
   int pos_of(int stroke) const { return pos_[stroke]; }
   const std::vector<int>& order() const { return order_; }
@@ -100,12 +119,42 @@ std::vector<int> nearest_neighbour_order(const std::vector<Vec2>& ends, const Ve
   return order;
 }
 
+// Candidate lists, flat: the k nearest other endpoints of endpoint e, nearest first.
+class NearLists {
+ public:
+  NearLists(const std::vector<Vec2>& ends, int k) : k_(std::clamp(k, 0, PointGrid::kMaxK)) {
+    PointGrid grid(ends);
+    ids_.resize(ends.size() * static_cast<std::size_t>(k_));
+    count_.resize(ends.size());
+    for (std::size_t e = 0; e < ends.size(); ++e) {
+      const int s = static_cast<int>(e / 2);
+      count_[e] = static_cast<std::uint8_t>(
+          grid.k_nearest(ends[e], k_, [s](int id) { return id / 2 == s; }, &ids_[e * k_]));
+    }
+  }
+  struct Range {
+    const int* b;
+    const int* e;
+    const int* begin() const { return b; }
+    const int* end() const { return e; }
+  };
+  Range operator[](int e) const {
+    const int* b = ids_.data() + static_cast<std::size_t>(e) * k_;
+    return {b, b + count_[static_cast<std::size_t>(e)]};
+  }
+
+ private:
+  int k_;
+  std::vector<int> ids_;
+  std::vector<std::uint8_t> count_;
+};
+
 // 2-opt and Or-opt driven by candidate lists: for the edge a -> b leaving position p, try
-// joining a to one of its near endpoints c instead.
+// joining a to one of its near endpoints instead, or b to one of its own; move single
+// strokes (either way round) next to a near endpoint.
 class Improver {
  public:
-  Improver(Tour& t, const std::vector<std::vector<int>>& near, const OrderOptions& o)
-      : t_(t), near_(near), o_(o) {}
+  Improver(Tour& t, const NearLists& near, const OrderOptions& o) : t_(t), near_(near), o_(o) {}
 
   void run(long budget) {
     std::vector<int> queue(t_.order().rbegin(), t_.order().rend());
@@ -118,7 +167,8 @@ class Improver {
       bool improved = false;
       for (int edge_at : {p - 1, p}) {
         if (edge_at < -1 || edge_at + 1 >= t_.size()) continue;
-        if (try_two_opt(edge_at, budget) || try_or_opt(edge_at, budget)) {
+        if (try_two_opt(edge_at, budget) || try_two_opt_from_b(edge_at, budget) ||
+            try_or_opt(edge_at, budget)) {
           improved = true;
           break;
         }
@@ -170,6 +220,38 @@ class Improver {
     return false;
   }
 
+  // The same moves found from b's candidates: a new edge c -> b.
+  bool try_two_opt_from_b(int p, long& budget) {
+    if (p < 0) return false;
+    const Vec2 a = t_.out_point(p), b = t_.in_point(p + 1);
+    const double ab = t_.d(a, b);
+    for (int c : near_[t_.in(p + 1)]) {
+      --budget;
+      const Vec2 cp = t_.ends_point(c);
+      const double bc = t_.d(b, cp);
+      if (bc >= ab) break;
+      const int q = t_.pos_of(c / 2);
+      if (q > p + 1 && c == t_.in(q) && q - 1 - p <= o_.max_move_span) {
+        // reverse [p+1 .. q-1]: a -> out(q-1), in(p+1) = b -> c = in(q)
+        const Vec2 d = t_.out_point(q - 1);
+        const double delta = t_.d(a, d) + bc - ab - t_.d(d, cp);
+        if (delta < -1e-9) {
+          apply_reverse(p + 1, q - 1);
+          return true;
+        }
+      } else if (q <= p && c == t_.in(q) && p - q <= o_.max_move_span) {
+        // reverse [q .. p]: out(q-1) -> out(p) = a, c = in(q) -> b
+        const Vec2 prev = t_.out_point(q - 1);
+        const double delta = t_.d(prev, a) + bc - t_.d(prev, cp) - ab;
+        if (delta < -1e-9) {
+          apply_reverse(q, p);
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   // Moves the single stroke at p + 1 (either way round) next to a near endpoint of a.
   bool try_or_opt(int p, long& budget) {
     if (p + 1 >= t_.size()) return false;
@@ -192,6 +274,23 @@ class Improver {
         return true;
       }
     }
+    // The stroke turned round: out(q) -> out(m) ... in(m) -> in(q + 1).
+    for (int c : near_[t_.out(m)]) {
+      --budget;
+      const int q = t_.pos_of(c / 2);
+      if (q == m || q + 1 == m || c != t_.out(q) || std::abs(q - m) > o_.max_move_span) continue;
+      const Vec2 cp = t_.ends_point(c);
+      const bool q_last = q + 1 >= t_.size();
+      const Vec2 nxt = q_last ? Vec2::Zero() : t_.in_point(q + 1);
+      const double added = t_.d(cp, out_m) + (q_last ? 0.0 : t_.d(in_m, nxt) - t_.d(cp, nxt));
+      if (added - removed < -1e-9) {
+        const int stroke = t_.order()[m];
+        move_after(m, q);
+        const int at = t_.pos_of(stroke);
+        t_.reverse_block(at, at);
+        return true;
+      }
+    }
     return false;
   }
 
@@ -203,19 +302,11 @@ class Improver {
   // Moves the stroke at m to just after position q, keeping its direction.
   void move_after(int m, int q) {
     touched_ = {t_.order()[m], t_.order()[q]};
-    if (q > m) {
-      t_.reverse_block(m, q);
-      t_.reverse_block(m, q - 1);
-      t_.reverse_block(q, q);
-    } else {
-      t_.reverse_block(q + 1, m);
-      t_.reverse_block(q + 1, q + 1);
-      t_.reverse_block(q + 2, m);
-    }
+    t_.shift(m, q > m ? q : q + 1);
   }
 
   Tour& t_;
-  const std::vector<std::vector<int>>& near_;
+  const NearLists& near_;
   const OrderOptions& o_;
   std::vector<int> touched_;
 };
@@ -234,11 +325,7 @@ std::vector<Stroke> order_one_pen(const std::vector<Stroke>& strokes, const Orde
   for (int s = 0; s < n; ++s) {
     if (reversed[s]) tour.reverse_block(tour.pos_of(s), tour.pos_of(s));
   }
-  PointGrid grid(ends);
-  std::vector<std::vector<int>> near(ends.size());
-  for (int e = 0; e < 2 * n; ++e) {
-    near[e] = grid.k_nearest(ends[e], o.neighbours, [&](int id) { return id / 2 == e / 2; });
-  }
+  const NearLists near(ends, o.neighbours);
   Improver(tour, near, o).run(static_cast<long>(o.evaluations_per_stroke * n));
   std::vector<Stroke> out;
   out.reserve(n);
@@ -262,21 +349,26 @@ std::vector<Stroke> merge_touching(const std::vector<Stroke>& strokes, double jo
   std::vector<char> used(n, 0);
   std::vector<Stroke> out;
   const auto find = [&](const Vec2& at, int tool) {
-    const int e = grid.nearest(at, [&](int id) {
+    const int e = grid.nearest_within(at, join_mm, [&](int id) {
       const int s = id / 2;
       return !used[s] && strokes[s].tool == tool && (id % 2 == 0 || strokes[s].reversible);
     });
     return (e >= 0 && (ends[e] - at).norm() <= join_mm) ? e : -1;
   };
+  const auto use = [&](int s) {
+    used[s] = 1;
+    grid.forget(2 * s);
+    grid.forget(2 * s + 1);
+  };
   for (int s = 0; s < n; ++s) {
     if (used[s]) continue;
-    used[s] = 1;
+    use(s);
     Stroke chain = strokes[s];
     // Extend forward, then (reversible chains) backward by extending the reversed chain.
     for (int pass = 0; pass < (chain.reversible ? 2 : 1); ++pass) {
       if (pass == 1) chain = slicer::reversed(chain);
       for (int e = find(chain.end_mm(), chain.tool); e >= 0; e = find(chain.end_mm(), chain.tool)) {
-        used[e / 2] = 1;
+        use(e / 2);
         const Stroke& next = strokes[e / 2];
         chain = joined(chain, e % 2 == 0 ? next : slicer::reversed(next));
         chain.reversible = chain.reversible && next.reversible;

@@ -21,7 +21,7 @@ struct OrderOptions {
   MetricMap metric;                             // empty = identity
   int neighbours = 8;                           // candidate list length per endpoint
   double evaluations_per_stroke = 200.0;        // improvement budget (deterministic)
-  int max_move_span = 1000;                     // strokes a single move may shift
+  int max_move_span = 50000;                     // strokes a single move may shift
 };
 
 // Joins strokes of the same tool whose end and start lie within join_mm of each other
