@@ -9,7 +9,12 @@ BUILD_DIR := build
 STRAND := $(BUILD_DIR)/cli/strand
 CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release $(if $(CI),-DSTRAND_WERROR=ON,)
 
-.PHONY: all deps build run test bench bench-micro clean
+# Sanitizer and fuzzing build (clang): ASan + UBSan over the whole test suite, libFuzzer targets.
+SANITIZE_PACKAGES := clang libclang-rt-14-dev
+SAN_DIR := build-asan
+FUZZ_SECONDS ?= 600
+
+.PHONY: all deps build run test bench bench-micro clean sanitize fuzz fuzz-ci sanitize-build
 
 all: build
 
@@ -45,5 +50,25 @@ bench: build
 bench-micro: build
 	@$(BUILD_DIR)/tests/bench/strand_bench
 
+sanitize-build: deps
+	@$(MAKE) deps DEBIAN_PACKAGES="$(SANITIZE_PACKAGES)"
+	@cmake -S . -B $(SAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+	  -DSTRAND_SANITIZE=ON -DSTRAND_FUZZ=ON >/dev/null
+	@cmake --build $(SAN_DIR) -j$$(nproc)
+
+# Every test under AddressSanitizer + UndefinedBehaviorSanitizer (any report fails the test).
+sanitize: sanitize-build
+	@cd $(SAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp \
+	  ctest --output-on-failure -j$$(nproc)
+
+# Each fuzz target for FUZZ_SECONDS (default 600); fuzz-ci is the short run in .ci/run.
+fuzz: sanitize-build
+	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp tests/fuzz/run_fuzzers.sh $(SAN_DIR) $(FUZZ_SECONDS)
+
+fuzz-ci:
+	@$(MAKE) fuzz FUZZ_SECONDS=60
+
 clean:
-	rm -rf $(BUILD_DIR) out
+	rm -rf $(BUILD_DIR) $(SAN_DIR) out

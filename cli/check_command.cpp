@@ -9,6 +9,7 @@
 #include "cli/commands.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/params.h"
 #include "slicer/tolerances.h"
 
@@ -55,9 +56,9 @@ void write_svg(const post::ParsedGcode& parsed, const post::CheckReport& report,
 }
 
 int run_check(const CheckArgs& a) {
-  if (!(a.arc_tolerance_mm > 0.0 && a.arc_tolerance_mm <= 1.0)) {
+  if (!(a.arc_tolerance_mm >= post::kMinFlattenToleranceMm && a.arc_tolerance_mm <= 1.0)) {
     throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) +
-                     ": must be in (0, 1] (mm)");
+                     ": must be in [0.001, 1] (mm)");
   }
   const std::string text = slicer::read_file(a.file);
   std::unique_ptr<machines::MachineProfile> machine;
@@ -70,7 +71,7 @@ int run_check(const CheckArgs& a) {
   options.machine = machine.get();
   const post::CheckReport report = post::check_parsed(parsed, options);
   if (!a.svg_layer.empty()) write_svg(parsed, report, a);
-  std::cout << (a.json ? post::to_json(report).dump(2) + "\n" : post::to_text(report));
+  std::cout << (a.json ? slicer::dump_json(post::to_json(report)) + "\n" : post::to_text(report));
   return report.ok() ? 0 : 1;
 }
 

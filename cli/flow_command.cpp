@@ -1,5 +1,6 @@
 // `strand flow`: pneumatic syringe flow model both ways (pressure -> flow -> speed, and
 // speed -> flow -> pressure) for a bead of given section.
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -24,7 +25,10 @@ struct FlowArgs {
 
 void positive(const char* key, std::optional<double> v, const char* unit,
               std::vector<std::string>& problems) {
-  if (v && !(*v > 0.0)) problems.push_back(std::string("flow.") + key + " = " + slicer::short_number(*v) + ": must be > 0 (" + unit + ")");
+  if (v && !(*v > 0.0 && std::isfinite(*v))) {
+    problems.push_back(std::string("flow.") + key + " = " + slicer::short_number(*v) +
+                       ": must be a finite number > 0 (" + unit + ")");
+  }
 }
 
 post::Rheology rheology(const FlowArgs& a, std::vector<std::string>& problems) {
@@ -56,11 +60,15 @@ int run_flow(const FlowArgs& a) {
   positive("bead-height", a.bead_height_mm, "mm", problems);
   if (!a.pressure_bar && !a.speed_mm_per_min) problems.push_back("flow.pressure-bar: give --pressure-bar (-> speed) and/or --speed (-> pressure)");
   const post::Rheology ink = rheology(a, problems);
+  const double w = a.bead_width_mm.value_or(a.nozzle_mm);
+  const double h = a.bead_height_mm.value_or(0.88 * a.nozzle_mm);
+  if (problems.empty() && h > w) {
+    problems.push_back("flow.bead-height = " + slicer::short_number(h) + ": must be <= bead width " +
+                       slicer::short_number(w) + " (a squashed bead is not taller than wide) (mm)");
+  }
   if (!problems.empty()) throw InputError(problems);
 
   const post::Nozzle nozzle{a.nozzle_mm / 2.0, a.nozzle_length_mm};
-  const double w = a.bead_width_mm.value_or(a.nozzle_mm);
-  const double h = a.bead_height_mm.value_or(0.88 * a.nozzle_mm);
   const double area = slicer::bead_area_mm2(w, h);
   using machines::fmt_fixed;
   std::cout << "ink      " << (ink.power_law ? "power law K " + slicer::short_number(ink.k_pa_sn) + " Pa.s^n, n " + slicer::short_number(ink.n)

@@ -10,6 +10,7 @@
 #include "cli/job_runner.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/params.h"
 #include "slicer/tolerances.h"
 
@@ -80,16 +81,13 @@ int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
 // Job file: {"generator", "machine", "params": {flag: value}, "output", "report",
 // "arc-tolerance"}; relative output paths are relative to the current directory.
 nlohmann::json read_job(const std::string& path) {
-  try {
-    return nlohmann::json::parse(slicer::read_file(path));
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError("job = " + path + ": malformed JSON at byte " + std::to_string(e.byte));
-  }
+  return slicer::parse_json(slicer::read_file(path), "job = " + path);
 }
 
 int run_job_json(const nlohmann::json& j, const std::string& path) {
   if (!j.is_object()) throw InputError("job = " + path + ": must be a JSON object");
-  const JobSpec job = job_spec_from_json(j, "job");
+  JobSpec job = job_spec_from_json(j, "job");
+  job.settings.inputs.push_back(path);
   return run_and_print(*job.generator, job.params, job.settings);
 }
 

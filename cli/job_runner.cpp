@@ -1,11 +1,15 @@
 // Job parsing and the generate-plan-emit-write chain, shared by every command that runs jobs.
 #include "cli/job_runner.h"
 
-#include <optional>
+#include <stdexcept>
 
+#include "machines/gcode_format.h"
 #include "machines/profile.h"
+#include "postprocess/inspect/check.h"
+#include "postprocess/inspect/crossings.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/params.h"
 
 namespace strand::cli {
@@ -28,6 +32,29 @@ std::string generator_names() {
   return names;
 }
 
+// Chords coarser than the default can cut into a neighbouring pass (a chord lies inside its
+// arc by up to the tolerance): the planned program is searched for crossings and refused.
+void refuse_crossing_chords(const slicer::MotionProgram& program, const JobSettings& s) {
+  const post::ContactReport contacts =
+      post::find_contacts(program, slicer::kDefaultArcToleranceMm, slicer::kGcodeResolutionMm);
+  if (contacts.crossings.empty()) return;
+  const slicer::Vec2 at = contacts.crossings.front().at_mm;
+  throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) + ": the chords cross the strand at " +
+                   std::to_string(contacts.crossings.size()) + " place(s), first near (" +
+                   machines::fmt_xyz(at.x()) + ", " + machines::fmt_xyz(at.y()) +
+                   ") mm; use a smaller tolerance (the default " +
+                   slicer::short_number(slicer::kDefaultArcToleranceMm) + " mm keeps every pass apart)");
+}
+
+// Debug builds: every file a generator writes must pass `strand check` on its machine.
+[[maybe_unused]] void assert_passes_check(const std::string& gcode, const machines::MachineProfile& m) {
+  post::CheckOptions o;
+  o.machine = &m;
+  o.touch_mm = slicer::kGcodeResolutionMm;
+  const post::CheckReport report = post::check_gcode(gcode, o);
+  if (!report.ok()) throw std::logic_error("generated G-code fails strand check:\n" + post::to_text(report));
+}
+
 }  // namespace
 
 JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
@@ -41,21 +68,22 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   }
   if (!problems.empty()) throw InputError(problems);
   JobSpec s;
-  const std::string name = j.value("generator", std::string());
+  const std::string name = slicer::get_text(j, "generator", where, "");
   s.generator = patterns::find_generator(name);
   if (!s.generator) {
     throw InputError(where + ".generator = " + name + ": must be one of " + generator_names());
   }
-  s.settings.machine = j.value("machine", s.settings.machine);
-  s.settings.output = j.value("output", std::string());
-  s.settings.report = j.value("report", std::string());
-  s.settings.arc_tolerance_mm = j.value("arc-tolerance", s.settings.arc_tolerance_mm);
-  if (j.contains("viewer-e") && !j.at("viewer-e").is_boolean()) {
-    throw InputError(where + ".viewer-e = " + j.at("viewer-e").dump() + ": must be true or false");
-  }
-  s.settings.viewer_e = j.value("viewer-e", false);
+  s.settings.machine = slicer::get_text(j, "machine", where, s.settings.machine);
+  s.settings.output = slicer::get_text(j, "output", where, "");
+  s.settings.report = slicer::get_text(j, "report", where, "");
+  s.settings.arc_tolerance_mm =
+      slicer::get_number(j, "arc-tolerance", where, s.settings.arc_tolerance_mm);
+  s.settings.viewer_e = slicer::get_bool(j, "viewer-e", where, false);
   s.params = j.value("params", nlohmann::json::object());
-  s.description = j.value("description", std::string());
+  if (!s.params.is_object()) {
+    throw InputError(where + ".params: must be an object of parameter values, e.g. {\"nozzle\": 0.84}");
+  }
+  s.description = slicer::get_text(j, "description", where, "");
   return s;
 }
 
@@ -67,16 +95,21 @@ struct Prepared {
   post::PlanOptions options;
 };
 
-// Everything a job checks before planning: arc tolerance, parameters, machine.
+// Everything a job checks before planning: arc tolerance, machine, parameters.
 Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                  const JobSettings& s) {
   if (!(s.arc_tolerance_mm > 0.0 && s.arc_tolerance_mm <= 1.0)) {
     throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
                      ": must be in (0, 1] (mm)");
   }
-  const nlohmann::json values = slicer::resolve_params(generator.table(), params);
-  Prepared p{generator.generate(values), {}, {}};
+  Prepared p;
   p.machine = machines::load_profile(s.machine);
+  if (p.machine.plotter.enabled) {
+    throw InputError("machine = " + s.machine + ": a pen plotter; " + generator.name +
+                     " needs a printer profile (strand machines lists them)");
+  }
+  const nlohmann::json values = slicer::resolve_params(generator.table(), params);
+  p.toolpath = generator.generate(values);
   p.options = post::plan_options_from(p.toolpath, s.arc_tolerance_mm);
   return p;
 }
@@ -86,8 +119,13 @@ Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json&
 post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                            const JobSettings& s) {
   Prepared p = prepare(generator, params, s);
-  return post::produce(std::move(p.toolpath), p.machine, p.options, job_output_path(generator, s),
-                       s.viewer_e);
+  post::Produced produced = post::produce(std::move(p.toolpath), p.machine, p.options,
+                                          job_output_path(generator, s), s.viewer_e);
+  if (s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm) refuse_crossing_chords(produced.program, s);
+#ifndef NDEBUG
+  assert_passes_check(produced.gcode, p.machine);
+#endif
+  return produced;
 }
 
 std::string viewer_output_path(const std::string& out) {
@@ -103,21 +141,25 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& s) {
-  Prepared p = prepare(generator, params, s);
-  // G-code streams into temp files as it is formatted; all are renamed at the end, and an
-  // error midway (a part that does not fit) leaves no output at all.
+  slicer::OutputFiles out;
+  for (const std::string& input : s.inputs) out.protect_input(input);
   const std::string path = job_output_path(generator, s);
-  slicer::AtomicFile gcode(path);
-  std::optional<slicer::AtomicFile> viewer;
-  if (s.viewer_e) viewer.emplace(viewer_output_path(path));
-  std::optional<slicer::AtomicFile> report;
-  if (!s.report.empty()) report.emplace(s.report);
+#ifndef NDEBUG
+  // Debug builds check the whole text of every file they write (produce_job).
+  post::Produced produced = produce_job(generator, params, s);
+  out.stage(path, produced.gcode);
+  if (s.viewer_e) out.stage(viewer_output_path(path), produced.viewer_gcode);
+#else
+  // The G-code streams into its temp file as it is formatted: a large job never holds it.
+  Prepared p = prepare(generator, params, s);
+  std::ostream& gcode = out.stage_stream(path);
+  std::ostream* viewer = s.viewer_e ? &out.stage_stream(viewer_output_path(path)) : nullptr;
   post::Produced produced = post::produce(std::move(p.toolpath), p.machine, p.options, path,
-                                          s.viewer_e, {&gcode.out(), viewer ? &viewer->out() : nullptr});
-  if (report) report->out() << produced.report.dump(2) << "\n";
-  gcode.commit();
-  if (viewer) viewer->commit();
-  if (report) report->commit();
+                                          s.viewer_e, {&gcode, viewer});
+  if (s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm) refuse_crossing_chords(produced.program, s);
+#endif
+  if (!s.report.empty()) out.stage(s.report, slicer::dump_json(produced.report) + "\n");
+  out.commit();
   return produced;
 }
 

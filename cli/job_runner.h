@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "patterns/registry.h"
 #include "postprocess/plan/produce.h"
@@ -17,6 +18,7 @@ struct JobSettings {
   std::string report;  // empty: no report file
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
   bool viewer_e = false;  // also write the preview-only copy with computed E
+  std::vector<std::string> inputs;  // files the outputs must never overwrite (the job file)
 };
 
 // A job file's content, checked: {"generator", "machine", "params", "output", "report",
@@ -43,8 +45,9 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 // "out/x.gcode" -> "out/x.viewer-e.gcode": the preview-only copy beside the printable file.
 std::string viewer_output_path(const std::string& gcode_path);
 
-// produce_job, but the G-code (and viewer copy) streams into the files as it is formatted
-// (Produced::gcode stays empty); every file appears at the end, or none on an error.
+// produce_job, then writes the G-code, viewer copy and report as one transaction (all or
+// none); in release builds the G-code streams into its temp file as it is formatted
+// (Produced::gcode stays empty). Returns what was produced.
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& settings);
 

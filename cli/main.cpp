@@ -3,11 +3,43 @@
 // no output file).
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <new>
+#include <nlohmann/json.hpp>
+#include <string>
 
 #include "cli/commands.h"
+#include "slicer/file_io.h"
 #include "slicer/input_error.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+// Errors are one line whatever the input put into them: control characters (a newline in a
+// machine name or a job key) are shown escaped, and the line is cut at 1000 characters.
+std::string one_line(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (u < 0x20 || u == 0x7f) {
+      static const char* const kHex = "0123456789abcdef";
+      out += std::string("\\x") + kHex[u >> 4] + kHex[u & 15];
+    } else {
+      out += c;
+    }
+    if (out.size() > 1000) return out.substr(0, 997) + "...";
+  }
+  return out;
+}
+
+int fail(const std::string& message) {
+  std::cerr << "strand: error: " << one_line(message) << "\n";
+  return 2;
+}
+
+int run(int argc, char** argv) {
   CLI::App app{"strand: toolpaths for Direct Ink Writing and pen plotting (mm, mm/min)"};
   app.require_subcommand(1);
   strand::cli::Action action;
@@ -26,13 +58,26 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "strand: error: " << e.what() << "\n";
-    return 2;
+    return fail(e.what());
   }
+  return action ? action() : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  strand::slicer::install_signal_cleanup();
+  // No exception leaves main: input errors and library exceptions alike end in one line and
+  // exit code 2, after the output transactions have removed their temp files.
   try {
-    return action ? action() : 0;
+    return run(argc, argv);
   } catch (const strand::InputError& e) {
-    std::cerr << "strand: error: " << e.what() << "\n";
-    return 2;
+    return fail(e.what());
+  } catch (const nlohmann::json::exception& e) {
+    return fail(std::string("unexpected value in a JSON input (") + e.what() + ")");
+  } catch (const std::bad_alloc&) {
+    return fail("out of memory: the input asks for more than this machine has");
+  } catch (const std::exception& e) {
+    return fail(std::string("internal error: ") + e.what());
   }
 }

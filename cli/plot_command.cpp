@@ -13,6 +13,7 @@
 #include "cli/commands.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/params.h"
 #include "slicer/svg_import.h"
 
@@ -118,7 +119,7 @@ int run_plot(const PlotArgs& a) {
   }
   slicer::write_file_atomic(a.output, gcode);
   if (!erase.empty()) slicer::write_file_atomic(a.erase, erase);
-  if (!a.report.empty()) slicer::write_file_atomic(a.report, report.dump(2) + "\n");
+  if (!a.report.empty()) slicer::write_file_atomic(a.report, slicer::dump_json(report) + "\n");
   std::cout << "plot " << a.svg << " -> " << a.output << " (" << m.name << ")\n"
             << "  size           " << mm(e.size_mm.x()) << " x " << mm(e.size_mm.y()) << " mm\n"
             << "  strokes        " << strokes_in << " (" << strokes.size() << " after merging)\n"

@@ -11,6 +11,8 @@
 #include "cli/commands.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
+#include "slicer/params.h"
 #include "slicer/tolerances.h"
 
 namespace strand::cli {
@@ -64,8 +66,9 @@ int run(const PreviewArgs& a) {
   if (ext != ".png" && ext != ".svg" && ext != ".html" && ext != ".glb") {
     throw InputError("--output = " + a.output + ": extension must be .png, .svg, .html or .glb");
   }
-  if (!(a.arc_tolerance_mm > 0.0 && a.arc_tolerance_mm <= 1.0)) {
-    throw InputError("--arc-tolerance: must be in (0, 1] (mm)");
+  if (!(a.arc_tolerance_mm >= post::kMinFlattenToleranceMm && a.arc_tolerance_mm <= 1.0)) {
+    throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) +
+                     ": must be in [0.001, 1] (mm)");
   }
   const std::string gcode = slicer::read_file(a.input);
   const post::ParsedGcode parsed = post::parse_gcode(gcode);
@@ -96,7 +99,8 @@ void add_preview_command(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand("preview", "draw any G-code file as .png, .svg, .html or .glb (by -o's extension)");
   sub->add_option("gcode", a->input, "G-code file")->required();
   sub->add_option("-o,--output", a->output, "preview file: .png, .svg, .html or .glb")->required();
-  sub->add_option("--layer", a->layer, "only this layer (0-based, as ;LAYER:n; png/svg; default all)");
+  sub->add_option("--layer", a->layer, "only this layer (0-based, as ;LAYER:n; png/svg; default all)")
+      ->check(CLI::Range(0, 100000000));
   sub->add_option("--colour", a->colour, "colour by feature or layer (png/svg; default feature)");
   sub->add_option("--view", a->view, "top, iso or both side by side (png/svg; default both)");
   sub->add_flag("--travel", a->travel, "also draw travel moves (png/svg)");

@@ -12,6 +12,7 @@
 #include "cli/sweep_runner.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 
 namespace strand::cli {
 
@@ -27,11 +28,7 @@ struct SweepArgs {
 };
 
 nlohmann::json read_json(const std::string& path, const std::string& what) {
-  try {
-    return nlohmann::json::parse(slicer::read_file(path));
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(what + " = " + path + ": malformed JSON at byte " + std::to_string(e.byte));
-  }
+  return slicer::parse_json(slicer::read_file(path), what + " = " + path);
 }
 
 int run(const SweepArgs& a) {

@@ -23,9 +23,14 @@ using NodePtr = std::shared_ptr<const Constraint::Node>;
 
 class Parser {
  public:
+  // Bounds that keep parsing, evaluating and freeing the tree shallow (no stack overflow).
+  static constexpr std::size_t kMaxLength = 500;
+  static constexpr int kMaxDepth = 32;
+
   Parser(const std::string& text, const std::string& where) : s_(text), where_(where) {}
 
   Constraint parse() {
+    if (s_.size() > kMaxLength) fail("longer than " + std::to_string(kMaxLength) + " characters");
     Constraint c;
     c.text = s_;
     c.lhs = expr();
@@ -41,7 +46,8 @@ class Parser {
 
  private:
   [[noreturn]] void fail(const std::string& why) const {
-    throw InputError(where_ + " = \"" + s_ + "\": " + why +
+    const std::string shown = s_.size() > 80 ? s_.substr(0, 77) + "..." : s_;
+    throw InputError(where_ + " = \"" + shown + "\": " + why +
                      " (write e.g. \"gap >= nozzle\"; operators + - * / ( ) and < <= > >= == !=)");
   }
   void skip_space() {
@@ -97,6 +103,12 @@ class Parser {
     }
   }
   NodePtr factor() {
+    if (++depth_ > kMaxDepth) fail("nested deeper than " + std::to_string(kMaxDepth) + " levels");
+    NodePtr n = primary();
+    --depth_;
+    return n;
+  }
+  NodePtr primary() {
     if (eat('(')) {
       NodePtr inner = expr();
       if (!eat(')')) fail("missing ')'");
@@ -124,6 +136,7 @@ class Parser {
   const std::string& s_;
   const std::string& where_;
   std::size_t i_ = 0;
+  int depth_ = 0;
   std::vector<std::string> names_;
 };
 

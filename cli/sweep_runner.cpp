@@ -16,6 +16,7 @@
 #include "cli/sweep_manifest.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/tolerances.h"
 
 namespace strand::cli {
@@ -109,7 +110,7 @@ nlohmann::json run_point(const SweepSpec& s, const SweepPoint& p, const SweepOpt
     row["preview_html"] = o.previews ? nlohmann::json(page) : nlohmann::json();
     if (!s.job.settings.report.empty()) {  // the base job asked for reports: one per point
       row["report"] = p.name + ".report.json";
-      slicer::write_file_atomic((fs::path(o.dir) / row["report"].get<std::string>()).string(), produced.report.dump(2) + "\n");
+      slicer::write_file_atomic((fs::path(o.dir) / row["report"].get<std::string>()).string(), slicer::dump_json(produced.report) + "\n");
     }
     row["content_hash"] = fnv1a_hex(produced.gcode);
     row["check"] = sweep_check_summary(produced.gcode, settings.machine);

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/params.h"
 
 namespace strand::cli {
@@ -164,7 +165,7 @@ SweepSpec sweep_spec_from_json(const nlohmann::json& j) {
     s.keys.push_back(k);
     s.values.push_back(vary_values(v, "sweep.vary." + k));
   }
-  const std::string mode = j.value("mode", std::string("product"));
+  const std::string mode = slicer::get_text(j, "mode", "sweep", "product");
   if (mode != "product" && mode != "zip") throw InputError("sweep.mode = " + mode + ": must be product or zip");
   s.mode = mode == "zip" ? SweepMode::Zip : SweepMode::Product;
   for (std::size_t k = 1; s.mode == SweepMode::Zip && k < s.keys.size(); ++k) {

@@ -58,4 +58,14 @@ std::string fmt_fixed(double v, int decimals) {
   return std::string(buf, fixed_chars(buf, v, decimals));
 }
 
+std::string comment_text(std::string text, bool parentheses) {
+  for (char& c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) c = ' ';
+    if (!parentheses && c == '(') c = '[';
+    if (!parentheses && c == ')') c = ']';
+  }
+  return text;
+}
+
 }  // namespace strand::machines

@@ -20,4 +20,9 @@ inline std::string fmt_xyz(double mm) { return fmt_fixed(mm, 3); }
 inline std::string fmt_e(double e) { return fmt_fixed(e, 5); }
 inline std::string fmt_feed(double mm_per_min) { return fmt_fixed(mm_per_min, 0); }
 
+// Text made safe inside one G-code comment: control characters (a newline would start a
+// new, uncommented line: G-code injection) become spaces; with `parentheses` false (GRBL's
+// "( ... )" comments cannot nest) ( and ) become [ and ].
+std::string comment_text(std::string text, bool parentheses = true);
+
 }  // namespace strand::machines

@@ -130,7 +130,7 @@ std::string emit_pen_gcode(const slicer::MotionProgram& program, const MachinePr
                            const std::vector<std::string>& header) {
   if (!machine.plotter.enabled) throw std::logic_error("emit_pen_gcode: " + machine.name + " is not a plotter");
   PenWriter w(machine);
-  for (const auto& h : header) w.line(h.empty() ? ";" : "; " + h);
+  for (const auto& h : header) w.line(h.empty() ? ";" : "; " + comment_text(h));
   w.start(program.start_mm);
   w.line(";LAYER_CHANGE");
   w.line(";Z:0");

@@ -7,6 +7,7 @@
 #include "machines/profile_schema.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 #include "slicer/units.h"
 
 namespace strand::machines {
@@ -176,13 +177,7 @@ MachineProfile load_profile(const std::string& name_or_path) {
     }
     text = it->json;
   }
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw InputError("machine = " + name_or_path + ": malformed JSON at byte " +
-                     std::to_string(e.byte) + " (check commas, quotes and brackets)");
-  }
+  const nlohmann::json j = slicer::parse_json(text, "machine = " + name_or_path);
   return profile_from_json(j, "machine " + name_or_path);
 }
 

@@ -93,7 +93,7 @@ const std::vector<Field>& schema() {
            {"pivot_mm", T::Vec2},
            {"lever_mm", T::Number, false, 1.0, 100000.0},
            {"origin_radius_mm", T::Number, false, 1.0, 100000.0},
-           {"steps_per_mm", T::Vec2},
+           {"steps_per_mm", T::Vec2, false, 1e-6, 1e9},
        }},
       {"pen", T::Object, false, {}, {}, {},
        {
@@ -170,6 +170,38 @@ bool type_ok(T t, const nlohmann::json& v) {
   return false;
 }
 
+std::string shown(const nlohmann::json& v) {
+  return v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+// Profile text reaches G-code (names in the header, templates, valve commands): one line
+// each, no control characters, so a profile cannot slip extra lines into a file.
+bool one_line(const nlohmann::json& v) {
+  if (v.is_array()) {
+    for (const auto& e : v) {
+      if (!one_line(e)) return false;
+    }
+    return true;
+  }
+  if (!v.is_string()) return true;
+  for (const char c : v.get_ref<const std::string&>()) {
+    const auto u = static_cast<unsigned char>(c);
+    if ((u < 0x20 && c != '\t') || u == 0x7f) return false;
+  }
+  return true;
+}
+
+bool in_range(const Field& f, const nlohmann::json& v) {
+  if (v.is_array()) {
+    for (const auto& e : v) {
+      if (!in_range(f, e)) return false;
+    }
+    return true;
+  }
+  const double x = v.get<double>();
+  return !(f.min && x < *f.min) && !(f.max && x > *f.max);
+}
+
 void check(const std::vector<Field>& fields, const nlohmann::json& j, const std::string& prefix,
            const std::string& origin, std::vector<std::string>& out) {
   for (const auto& [key, value] : j.items()) {
@@ -185,15 +217,19 @@ void check(const std::vector<Field>& fields, const nlohmann::json& j, const std:
     }
     const auto& v = j.at(f.key);
     if (!type_ok(f.type, v)) {
-      out.push_back(origin + ": " + path + " = " + v.dump() + ": " + type_rule(f.type));
+      out.push_back(origin + ": " + path + " = " + shown(v) + ": " + type_rule(f.type));
       continue;
     }
-    if (f.type == T::Number) {
-      const double x = v.get<double>();
-      if ((f.min && x < *f.min) || (f.max && x > *f.max)) {
-        out.push_back(origin + ": " + path + " = " + v.dump() + ": must be in [" +
-                      slicer::short_number(*f.min) + ", " + slicer::short_number(*f.max) + "]");
-      }
+    if (!one_line(v)) {
+      out.push_back(origin + ": " + path + ": must be one line of text without control characters");
+      continue;
+    }
+    const bool numeric = f.type == T::Number || f.type == T::Vec2 || f.type == T::Vec3;
+    if (numeric && (f.min || f.max) && !in_range(f, v)) {
+      out.push_back(origin + ": " + path + " = " + shown(v) + ": must be in [" +
+                    slicer::short_number(f.min.value_or(-1e300)) + ", " +
+                    slicer::short_number(f.max.value_or(1e300)) + "]" +
+                    (f.type == T::Number ? "" : " each"));
     }
     if (f.type == T::String && !f.choices.empty()) {
       bool ok = false;
@@ -202,7 +238,7 @@ void check(const std::vector<Field>& fields, const nlohmann::json& j, const std:
         ok = ok || c == v.get<std::string>();
         list += (list.empty() ? "" : ", ") + c;
       }
-      if (!ok) out.push_back(origin + ": " + path + " = " + v.dump() + ": must be one of " + list);
+      if (!ok) out.push_back(origin + ": " + path + " = " + shown(v) + ": must be one of " + list);
     }
     if (f.type == T::Object) check(f.children, v, path + ".", origin, out);
   }

@@ -10,6 +10,10 @@
 
 namespace strand::patterns {
 
+// Most segments (plus strokes) one generated specimen may have: about 4 million moves, a few
+// hundred MB through planning and emission; larger stacks are refused before they are built.
+inline constexpr std::size_t kMaxToolpathSegments = 4'000'000;
+
 struct GeneratorSpec {
   std::string name;     // CLI sub-command and job "generator"
   std::string summary;  // one line for --help

@@ -1,35 +1,59 @@
-// Output files are written whole or not at all: write a sibling temp file, then rename.
+// Output files are written whole or not at all: each goes to a sibling temp file, and a
+// command's outputs are renamed into place together once every one of them is written.
 #pragma once
 
+#include <cstddef>
 #include <fstream>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace strand::slicer {
 
-// Writes `content` to `path` atomically; throws InputError if the directory is not writable.
-void write_file_atomic(const std::string& path, const std::string& content);
-// Reads a whole file; throws InputError naming the path if it cannot be read.
-std::string read_file(const std::string& path);
+// Largest input file read whole (G-code, SVG, JSON, meshes): bounds memory before any work.
+inline constexpr std::size_t kMaxInputBytes = std::size_t{256} << 20;
 
-// A file written in pieces (large G-code streams as it is formatted) and put in place whole:
-// text goes to the sibling temp file "<path>.strand-tmp"; commit() renames it over `path`.
-// Destroyed without commit (an error midway), it removes the temp file, leaving no output.
-class AtomicFile {
+// The outputs of one command as a transaction. stage() writes a temp file beside the target
+// ("<target>.strand-tmp", so a re-run replaces a killed run's leftover); commit() renames
+// every staged file into place; an uncommitted set removes its temps when destroyed, and
+// temps are removed on SIGINT/SIGTERM too (install_signal_cleanup). Throws InputError naming
+// the path when a target cannot be written, is staged twice, or is a protected input.
+class OutputFiles {
  public:
-  explicit AtomicFile(const std::string& path);  // throws InputError if it cannot be created
-  ~AtomicFile();
-  AtomicFile(const AtomicFile&) = delete;
-  AtomicFile& operator=(const AtomicFile&) = delete;
+  OutputFiles() = default;
+  OutputFiles(const OutputFiles&) = delete;
+  OutputFiles& operator=(const OutputFiles&) = delete;
+  ~OutputFiles();
 
-  std::ostream& out() { return out_; }
-  // Flushes and renames into place; throws InputError (and removes the temp) on failure.
+  // Refuses any later output that is this file (a job file must not be overwritten by its
+  // own report). Missing files are fine.
+  void protect_input(const std::string& path);
+  void stage(const std::string& path, const std::string& content);
+  // Stages `path` to be written in pieces (large G-code streams into it as it is formatted,
+  // so the whole file never sits in memory): returns the temp file's stream, valid until
+  // commit(), which flushes it and throws InputError if any write failed.
+  std::ostream& stage_stream(const std::string& path);
   void commit();
 
  private:
-  std::string path_;
-  std::string tmp_;
-  std::ofstream out_;
-  bool done_ = false;
+  struct Staged {
+    std::string target, temp;
+    std::unique_ptr<std::ofstream> stream;  // stage_stream only
+  };
+  void check_target(const std::string& path) const;
+  std::vector<Staged> staged_;
+  std::vector<std::string> protected_;
+  bool committed_ = false;
 };
+
+// One output file as a transaction of its own.
+void write_file_atomic(const std::string& path, const std::string& content);
+// Reads a whole regular file of at most kMaxInputBytes; throws InputError naming the path
+// if it is missing, a directory, unreadable or too large.
+std::string read_file(const std::string& path);
+// Removes the temp files of unfinished transactions when the process gets SIGINT or
+// SIGTERM, then dies of that signal. Call once from main().
+void install_signal_cleanup();
 
 }  // namespace strand::slicer

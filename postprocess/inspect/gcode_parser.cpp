@@ -6,6 +6,8 @@
 #include <cmath>
 #include <optional>
 
+#include "postprocess/plan/arc_segmentation.h"
+#include "slicer/params.h"
 #include "slicer/units.h"
 
 namespace strand::post {
@@ -272,6 +274,7 @@ class Reader {
     const auto i = w.get('I'), j = w.get('J'), r = w.get('R');
     if (i || j) {
       mv.center_mm = pos_.head<2>() + slicer::Vec2(i.value_or(0) * scale_, j.value_or(0) * scale_);
+      bound_arc(mv, n);
       return;
     }
     if (r) {  // radius form: centre on the perpendicular bisector, sign picks the short way
@@ -284,10 +287,34 @@ class Reader {
       if (perp.norm() > 0) perp.normalize();
       const bool left = (mv.ccw == (*r > 0));
       mv.center_mm = mid + (left ? h : -h) * perp;
+      bound_arc(mv, n);
       return;
     }
     out_.issues.push_back({n, "arc without I/J or R: read as a straight move"});
     mv.is_arc = false;
+  }
+
+  // Keeps every later flattening finite: absurd radii become straight moves, and the chord
+  // count of all arcs at the finest tolerance stays within kMaxArcChords.
+  void bound_arc(Move& mv, int n) {
+    const slicer::Vec2 from = pos_.head<2>(), to = mv.end_mm.head<2>();
+    const double r = (from - mv.center_mm).norm();
+    if (!(r >= kMinArcRadiusMm && r <= kMaxArcRadiusMm)) {
+      out_.issues.push_back({n, "arc radius " + slicer::short_number(r) + " mm outside [" +
+                                    slicer::short_number(kMinArcRadiusMm) + ", " +
+                                    slicer::short_number(kMaxArcRadiusMm) +
+                                    "] mm: read as a straight move"});
+      mv.is_arc = false;
+      return;
+    }
+    const double sweep = slicer::arc_sweep(mv.center_mm, from, to, mv.ccw);
+    arc_chords_ += chords_needed(r, sweep, kMinFlattenToleranceMm);
+    if (arc_chords_ > kMaxArcChords) {
+      out_.issues.push_back({n, "arcs of this file would flatten into more than " +
+                                    slicer::short_number(kMaxArcChords) +
+                                    " chords: read as a straight move"});
+      mv.is_arc = false;
+    }
   }
 
   std::string_view text_;
@@ -297,6 +324,7 @@ class Reader {
   double feed_ = 0.0;
   double scale_ = 1.0;
   double width_ = 0.0;
+  double arc_chords_ = 0.0;
   bool relative_ = false;
   bool relative_e_ = false;
   bool has_markers_ = false;

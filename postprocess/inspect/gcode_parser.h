@@ -10,6 +10,15 @@
 
 namespace strand::post {
 
+// Arcs a reader can flatten: radii outside [kMinArcRadiusMm, kMaxArcRadiusMm] (a kilometre)
+// are read as straight moves and reported; the chords of all arcs at the finest flattening
+// tolerance (kMinFlattenToleranceMm) are bounded by kMaxArcChords, so no file makes checks
+// or previews flatten without end.
+inline constexpr double kMinArcRadiusMm = 1e-4;
+inline constexpr double kMaxArcRadiusMm = 1e6;
+inline constexpr double kMinFlattenToleranceMm = 1e-3;
+inline constexpr double kMaxArcChords = 5e7;
+
 struct ParseIssue {
   int line = 0;        // 1-based line number
   std::string what;    // "inch units (G20)", "non-finite number in 'X nan'"

@@ -65,7 +65,7 @@ TEST_P(PreviewBadInput, ExitTwoOneLineNoFile) {
 INSTANTIATE_TEST_SUITE_P(
     Cases, PreviewBadInput,
     ::testing::Values(
-        BadCase{"unreadable", "preview missing.gcode -o out.png", "input = missing.gcode: cannot read"},
+        BadCase{"unreadable", "preview missing.gcode -o out.png", "input = missing.gcode: no such file"},
         BadCase{"not_gcode", "preview s.json -o out.png", "input = s.json: no moves"},
         BadCase{"extension", "preview s.gcode -o out.bmp", "--output = out.bmp"},
         BadCase{"layer", "preview s.gcode -o out.png --layer 99", "layer = 99"},

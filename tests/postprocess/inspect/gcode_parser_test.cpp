@@ -50,3 +50,32 @@ TEST(GcodeParser, ArcCentreFromIJ) {
 
 }  // namespace
 }  // namespace strand::post
+
+namespace strand::post {
+namespace {
+
+TEST(GcodeParserBounds, AbsurdArcRadiiAreReadAsStraightMovesAndReported) {
+  for (const char* g : {"G0 X0 Y0\nG2 X0 Y0 I1e12 J0\n", "G0 X0 Y0\nG2 X0 Y0 I1e-9 J0\n"}) {
+    const ParsedGcode p = parse_gcode(g);
+    ASSERT_EQ(p.program.moves.size(), 2u);
+    EXPECT_FALSE(p.program.moves[1].is_arc) << g;
+    ASSERT_EQ(p.issues.size(), 1u) << g;
+    EXPECT_NE(p.issues[0].what.find("arc radius"), std::string::npos) << p.issues[0].what;
+  }
+}
+
+TEST(GcodeParserBounds, TheChordsOfAllArcsAreBounded) {
+  // Full circles of 1 km radius need about 70,000 chords each at 0.001 mm: within the budget
+  // for a few, refused after about 700.
+  std::string g = "G0 X0 Y0\n";
+  for (int i = 0; i < 1000; ++i) g += "G2 X0 Y0 I1000000 J0\n";
+  const ParsedGcode p = parse_gcode(g);
+  std::size_t arcs = 0;
+  for (const auto& m : p.program.moves) arcs += m.is_arc ? 1 : 0;
+  EXPECT_GT(arcs, 100u);
+  EXPECT_LT(arcs, 1000u);
+  EXPECT_FALSE(p.issues.empty());
+}
+
+}  // namespace
+}  // namespace strand::post

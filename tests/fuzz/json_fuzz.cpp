@@ -1,0 +1,35 @@
+// Fuzz target: any bytes as a job file, a sweep file and a machine profile, each through the
+// same bounded parser and checks as the CLI.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "cli/job_runner.h"
+#include "cli/sweep_spec.h"
+#include "machines/profile.h"
+#include "slicer/input_error.h"
+#include "slicer/json_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace strand;
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  nlohmann::json j;
+  try {
+    j = slicer::parse_json(text, "fuzz");
+  } catch (const InputError&) {
+    return 0;
+  }
+  try {
+    cli::job_spec_from_json(j, "job");
+  } catch (const InputError&) {
+  }
+  try {
+    cli::expand_points(cli::sweep_spec_from_json(j));
+  } catch (const InputError&) {
+  }
+  try {
+    machines::profile_from_json(j, "machine fuzz");
+  } catch (const InputError&) {
+  }
+  return 0;
+}

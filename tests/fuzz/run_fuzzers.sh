@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Runs every libFuzzer target of a STRAND_FUZZ build for SECONDS each: first on the
+# regression inputs (each must pass), then fuzzing from a corpus seeded with samples/ and the
+# regressions. Prints executions per target; exits non-zero on the first crash, hang or leak.
+# Usage: tests/fuzz/run_fuzzers.sh BUILD_DIR SECONDS
+set -euo pipefail
+build="$1"
+seconds="$2"
+src="$(cd "$(dirname "$0")/../.." && pwd)"
+seeds() {  # target -> seed files
+  case "$1" in
+    svg_fuzz) ls "$src"/samples/plot/*.svg ;;
+    gcode_fuzz) ls "$src"/tests/golden/*.gcode ;;
+    json_fuzz) ls "$src"/samples/*.json "$src"/samples/sweeps/*.json "$src"/machines/profiles/*.json ;;
+    where_fuzz) ;;
+  esac
+}
+for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz; do
+  exe="$build/tests/fuzz/$target"
+  regressions="$src/tests/fuzz/regressions/$target"
+  corpus="$build/fuzz-corpus/$target"
+  mkdir -p "$corpus"
+  for f in $(seeds "$target"); do cp -f "$f" "$corpus/"; done
+  if compgen -G "$regressions/*" >/dev/null; then
+    "$exe" -rss_limit_mb=2048 -timeout=10 "$regressions"/* >/dev/null 2>"$build/$target.regressions.log" ||
+      { cat "$build/$target.regressions.log"; echo "$target: a regression input fails"; exit 1; }
+  fi
+  log="$build/$target.log"
+  if ! "$exe" "$corpus" "$regressions" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+       -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/$target-" >"$log" 2>&1; then
+    tail -n 60 "$log"
+    echo "$target: FAILED (artifact in $build/$target-*)"
+    exit 1
+  fi
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+  echo "$target: ${seconds} s, ${execs} executions, no crash"
+done
