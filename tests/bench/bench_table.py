@@ -69,14 +69,17 @@ class Table:
             print(line(r).rstrip())
 
 
-def scaffold(t, strand, work, label, machine, extra):
+def scaffold(t, strand, work, label, machine, extra, memory_target):
     out = os.path.join(work, "scaffold.gcode")
     cpu, rss = run([strand, "scaffold", "--machine", machine, "--nozzle", "0.25", "--gap", "0.25",
                     "--size", "180x180", "-o", out] + extra, work)
     moves = count_moves(out)
     t.add(label, "moves", moves, "")
     t.add(label, "throughput", round(moves / cpu / 1e6, 2), "M moves/s cpu", ">= 3", moves / cpu >= 3e6)
-    t.add(label, "peak memory", round(rss / moves, 1), "bytes/move", "<= 100", rss / moves <= 100)
+    if memory_target:  # small jobs: the process's fixed ~20 MiB dominates, no per-move target
+        t.add(label, "peak memory", round(rss / moves, 1), "bytes/move", "<= 100", rss / moves <= 100)
+    else:
+        t.add(label, "peak memory", round(rss / moves, 1), "bytes/move")
     t.add(label, "peak memory", round(rss / 2**20), "MiB")
     os.remove(out)
 
@@ -97,7 +100,10 @@ def plot(t, strand, work, shared, n, machine, targets):
     pen_up_mm = pen_up["pen_up_mm"]
     label = f"plot {n // 1000}k lines"
     t.add(label, "cpu per stroke", round(cpu / n * 1e6, 2), "us", "<= 10", cpu / n <= 10e-6)
-    t.add(label, "peak memory", round(rss / n), "bytes/stroke", "<= 1024", rss / n <= 1024)
+    if n >= 300000:  # the target is set at 300k strokes; below, the fixed ~20 MiB dominates
+        t.add(label, "peak memory", round(rss / n), "bytes/stroke", "<= 1024", rss / n <= 1024)
+    else:
+        t.add(label, "peak memory", round(rss / n), "bytes/stroke")
     if n in targets:
         t.add(label, "pen-up travel", round(pen_up_mm), "mm", "<= %d" % targets[n], pen_up_mm <= targets[n])
     else:
@@ -128,9 +134,9 @@ def main():
     with tempfile.TemporaryDirectory(prefix="strand-bench-") as work:
         tall = profile("bench-tall", "marlin-xyz-200", [200, 200, 1200], work)
         wide = profile("bench-xy-500", "xy-plotter-servo", [500, 500, 10], work)
-        scaffold(t, strand, work, "scaffold 132k moves", "marlin-xyz-200", ["--height", "40"])
+        scaffold(t, strand, work, "scaffold 132k moves", "marlin-xyz-200", ["--height", "40"], False)
         if not a.quick:
-            scaffold(t, strand, work, "scaffold 3.3M moves", tall, ["--layers", "4550"])
+            scaffold(t, strand, work, "scaffold 3.3M moves", tall, ["--layers", "4550"], True)
         long_rows = os.path.join(work, "long-rows.gcode")
         subprocess.run([sys.executable, os.path.join(HERE, "serpentine_gcode.py"), long_rows], check=True)
         check(t, strand, work, "check 4 x 250k-segment layers", long_rows, 1.0)
