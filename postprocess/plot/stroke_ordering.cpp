@@ -311,13 +311,17 @@ class Improver {
   std::vector<int> touched_;
 };
 
-std::vector<Stroke> order_one_pen(const std::vector<Stroke>& strokes, const OrderOptions& o,
-                                  const Vec2& start_metric) {
-  const int n = static_cast<int>(strokes.size());
+// One pen's strokes (indices into `all`) in drawing order, each with whether to turn it
+// round; the strokes themselves are copied once, by order_strokes.
+std::vector<std::pair<int, bool>> order_one_pen(const std::vector<Stroke>& all,
+                                                const std::vector<int>& members,
+                                                const OrderOptions& o, const Vec2& start_metric) {
+  const int n = static_cast<int>(members.size());
+  const auto stroke = [&](int s) -> const Stroke& { return all[static_cast<std::size_t>(members[s])]; };
   std::vector<Vec2> ends(2 * n);
   for (int s = 0; s < n; ++s) {
-    ends[2 * s] = o.metric ? o.metric(strokes[s].start_mm) : strokes[s].start_mm;
-    ends[2 * s + 1] = o.metric ? o.metric(strokes[s].end_mm()) : strokes[s].end_mm();
+    ends[2 * s] = o.metric ? o.metric(stroke(s).start_mm) : stroke(s).start_mm;
+    ends[2 * s + 1] = o.metric ? o.metric(stroke(s).end_mm()) : stroke(s).end_mm();
   }
   std::vector<char> reversed(n, 0);
   std::vector<int> order = nearest_neighbour_order(ends, start_metric, reversed);
@@ -327,12 +331,9 @@ std::vector<Stroke> order_one_pen(const std::vector<Stroke>& strokes, const Orde
   }
   const NearLists near(ends, o.neighbours);
   Improver(tour, near, o).run(static_cast<long>(o.evaluations_per_stroke * n));
-  std::vector<Stroke> out;
-  out.reserve(n);
-  for (int s : tour.order()) {
-    const bool flip = tour.reversed(s) && strokes[s].reversible;
-    out.push_back(flip ? slicer::reversed(strokes[s]) : strokes[s]);
-  }
+  std::vector<std::pair<int, bool>> out;
+  out.reserve(static_cast<std::size_t>(n));
+  for (int s : tour.order()) out.emplace_back(members[s], tour.reversed(s) && stroke(s).reversible);
   return out;
 }
 
@@ -380,14 +381,16 @@ std::vector<Stroke> merge_touching(const std::vector<Stroke>& strokes, double jo
 }
 
 std::vector<Stroke> order_strokes(const std::vector<Stroke>& strokes, const OrderOptions& o) {
-  std::map<int, std::vector<Stroke>> by_tool;
-  for (const auto& s : strokes) by_tool[s.tool].push_back(s);
+  std::map<int, std::vector<int>> by_tool;  // indices: strokes are copied once, into out
+  for (std::size_t i = 0; i < strokes.size(); ++i) by_tool[strokes[i].tool].push_back(static_cast<int>(i));
   std::vector<Stroke> out;
+  out.reserve(strokes.size());
   Vec2 at = o.start_mm;
   for (const auto& [tool, group] : by_tool) {
-    auto ordered = order_one_pen(group, o, o.metric ? o.metric(at) : at);
-    at = ordered.back().end_mm();
-    out.insert(out.end(), ordered.begin(), ordered.end());
+    for (const auto& [i, flip] : order_one_pen(strokes, group, o, o.metric ? o.metric(at) : at)) {
+      out.push_back(flip ? slicer::reversed(strokes[static_cast<std::size_t>(i)]) : strokes[static_cast<std::size_t>(i)]);
+    }
+    at = out.back().end_mm();
   }
   return out;
 }
