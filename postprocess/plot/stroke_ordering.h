@@ -21,7 +21,9 @@ struct OrderOptions {
   MetricMap metric;                             // empty = identity
   int neighbours = 8;                           // candidate list length per endpoint
   double evaluations_per_stroke = 200.0;        // improvement budget (deterministic)
-  int max_move_span = 50000;                     // strokes a single move may shift
+  // Strokes a single move may shift or reverse: bounds the cost of one move (the array tour
+  // pays per position), wide enough for the long-range fixes a nearest-neighbour tour needs.
+  int max_move_span = 50000;
 };
 
 // Joins strokes of the same tool whose end and start lie within join_mm of each other
