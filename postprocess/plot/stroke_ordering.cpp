@@ -29,14 +29,20 @@ Stroke joined(Stroke a, const Stroke& b) {
 // stroke s, 2s + 1 its end.
 class Tour {
  public:
-  Tour(std::vector<Vec2> ends, const Vec2& start, std::vector<int> order)
-      : ends_(std::move(ends)), start_(start), order_(std::move(order)),
-        rev_(ends_.size() / 2, 0), pos_(ends_.size() / 2, 0) {
-    for (int p = 0; p < size(); ++p) pos_[order_[p]] = p;
+  // Strokes 0..n-1 in this order (labels follow the starting tour, so the positions a
+  // reversal touches sit close together in memory), `reversed` giving each one's way round.
+  Tour(std::vector<Vec2> ends, const Vec2& start, const std::vector<char>& reversed)
+      : ends_(std::move(ends)), start_(start), order_(ends_.size() / 2), pos_(ends_.size() / 2) {
+    for (int p = 0; p < size(); ++p) {
+      order_[p] = 2 * p + (reversed[p] ? 1 : 0);
+      pos_[p] = p;
+    }
   }
   int size() const { return static_cast<int>(order_.size()); }
-  int in(int p) const { return 2 * order_[p] + (rev_[order_[p]] ? 1 : 0); }
-  int out(int p) const { return 2 * order_[p] + (rev_[order_[p]] ? 0 : 1); }
+  // Entries are 2 * stroke + 1 when the stroke is drawn turned round: its entry endpoint.
+  int stroke_at(int p) const { return order_[p] >> 1; }
+  int in(int p) const { return order_[p]; }
+  int out(int p) const { return order_[p] ^ 1; }
   Vec2 out_point(int p) const { return p < 0 ? start_ : ends_[out(p)]; }
   Vec2 in_point(int p) const { return ends_[in(p)]; }
   // Cost of the edge from position p to p + 1 (p = -1: from the start; p + 1 = size: none).
@@ -49,30 +55,28 @@ class Tour {
   // Reverses positions i..j and turns each of those strokes round, in one pass.
   void reverse_block(int i, int j) {
     for (int a = i, b = j; a <= b; ++a, --b) {
-      const int sa = order_[a], sb = order_[b];
-      order_[a] = sb;
-      order_[b] = sa;
-      pos_[sb] = a;
-      pos_[sa] = b;
-      rev_[sa] ^= 1;
-      if (a != b) rev_[sb] ^= 1;
+      const int oa = order_[a] ^ 1, ob = order_[b] ^ 1;
+      order_[a] = ob;
+      order_[b] = oa;
+      pos_[ob >> 1] = a;
+      pos_[oa >> 1] = b;
     }
   }
   // Moves the stroke at position m to position to, keeping its direction; the strokes
   // between shift by one.
   void shift(int m, int to) {
-    const int s = order_[m];
+    const int o = order_[m];
     if (to > m) {
-      for (int k = m; k < to; ++k) pos_[order_[k] = order_[k + 1]] = k;
+      for (int k = m; k < to; ++k) pos_[(order_[k] = order_[k + 1]) >> 1] = k;
     } else {
-      for (int k = m; k > to; --k) pos_[order_[k] = order_[k - 1]] = k;
+      for (int k = m; k > to; --k) pos_[(order_[k] = order_[k - 1]) >> 1] = k;
     }
-    order_[to] = s;
-    pos_[s] = to;
+    order_[to] = o;
+    pos_[o >> 1] = to;
   }
   int pos_of(int stroke) const { return pos_[stroke]; }
-  const std::vector<int>& order() const { return order_; }
-  bool reversed(int stroke) const { return rev_[stroke] != 0; }
+  const std::vector<Vec2>& ends() const { return ends_; }
+  bool reversed(int stroke) const { return (order_[pos_[stroke]] & 1) != 0; }
   double length() const {
     double total = 0.0;
     for (int p = -1; p + 1 < size(); ++p) total += edge(p);
@@ -82,9 +86,8 @@ class Tour {
  private:
   std::vector<Vec2> ends_;
   Vec2 start_;
-  std::vector<int> order_;
-  std::vector<char> rev_;
-  std::vector<int> pos_;
+  std::vector<int> order_;  // per position: 2 * stroke + turned round
+  std::vector<int> pos_;    // per stroke: its position
 };
 
 std::vector<int> nearest_neighbour_order(const std::vector<Vec2>& ends, const Vec2& start,
@@ -157,7 +160,8 @@ class Improver {
   Improver(Tour& t, const NearLists& near, const OrderOptions& o) : t_(t), near_(near), o_(o) {}
 
   void run(long budget) {
-    std::vector<int> queue(t_.order().rbegin(), t_.order().rend());
+    std::vector<int> queue(t_.size());
+    for (int p = 0; p < t_.size(); ++p) queue[t_.size() - 1 - p] = t_.stroke_at(p);
     std::vector<char> queued(t_.size(), 1);
     while (!queue.empty() && budget > 0) {
       const int s = queue.back();
@@ -175,7 +179,7 @@ class Improver {
       }
       if (improved) {
         for (int q = std::max(0, p - 2); q < std::min(t_.size(), p + 3); ++q) {
-          push(t_.order()[q], queue, queued);
+          push(t_.stroke_at(q), queue, queued);
         }
         for (int s2 : touched_) push(s2, queue, queued);
       }
@@ -284,7 +288,7 @@ class Improver {
       const Vec2 nxt = q_last ? Vec2::Zero() : t_.in_point(q + 1);
       const double added = t_.d(cp, out_m) + (q_last ? 0.0 : t_.d(in_m, nxt) - t_.d(cp, nxt));
       if (added - removed < -1e-9) {
-        const int stroke = t_.order()[m];
+        const int stroke = t_.stroke_at(m);
         move_after(m, q);
         const int at = t_.pos_of(stroke);
         t_.reverse_block(at, at);
@@ -295,13 +299,13 @@ class Improver {
   }
 
   void apply_reverse(int i, int j) {
-    touched_ = {t_.order()[i], t_.order()[j]};
+    touched_ = {t_.stroke_at(i), t_.stroke_at(j)};
     t_.reverse_block(i, j);
   }
 
   // Moves the stroke at m to just after position q, keeping its direction.
   void move_after(int m, int q) {
-    touched_ = {t_.order()[m], t_.order()[q]};
+    touched_ = {t_.stroke_at(m), t_.stroke_at(q)};
     t_.shift(m, q > m ? q : q + 1);
   }
 
@@ -324,16 +328,25 @@ std::vector<std::pair<int, bool>> order_one_pen(const std::vector<Stroke>& all,
     ends[2 * s + 1] = o.metric ? o.metric(stroke(s).end_mm()) : stroke(s).end_mm();
   }
   std::vector<char> reversed(n, 0);
-  std::vector<int> order = nearest_neighbour_order(ends, start_metric, reversed);
-  Tour tour(ends, start_metric, order);
-  for (int s = 0; s < n; ++s) {
-    if (reversed[s]) tour.reverse_block(tour.pos_of(s), tour.pos_of(s));
+  const std::vector<int> order = nearest_neighbour_order(ends, start_metric, reversed);
+  // Strokes relabelled in tour order: label k is stroke order[k].
+  std::vector<Vec2> tour_ends(ends.size());
+  std::vector<char> tour_reversed(n, 0);
+  for (int k = 0; k < n; ++k) {
+    tour_ends[2 * k] = ends[2 * order[k]];
+    tour_ends[2 * k + 1] = ends[2 * order[k] + 1];
+    tour_reversed[k] = reversed[order[k]];
   }
-  const NearLists near(ends, o.neighbours);
+  std::vector<Vec2>().swap(ends);
+  Tour tour(std::move(tour_ends), start_metric, tour_reversed);
+  const NearLists near(tour.ends(), o.neighbours);
   Improver(tour, near, o).run(static_cast<long>(o.evaluations_per_stroke * n));
   std::vector<std::pair<int, bool>> out;
   out.reserve(static_cast<std::size_t>(n));
-  for (int s : tour.order()) out.emplace_back(members[s], tour.reversed(s) && stroke(s).reversible);
+  for (int p = 0; p < n; ++p) {
+    const int k = tour.stroke_at(p);
+    out.emplace_back(members[order[k]], tour.reversed(k) && stroke(order[k]).reversible);
+  }
   return out;
 }
 
