@@ -3,13 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
 
 #include "postprocess/plan/arc_segmentation.h"
 #include "postprocess/plan/placement.h"
 #include "postprocess/plan/valve_lag.h"
+#include "slicer/memory.h"
 #include "slicer/units.h"
 #include "slicer/tolerances.h"
 
@@ -23,16 +21,8 @@ using slicer::Vec3;
 
 namespace {
 
-// Freed toolpath layers go back to the OS every this many layers (see return_freed_memory).
+// Freed toolpath layers go back to the OS every this many layers (slicer/memory.h).
 constexpr std::size_t kTrimEveryLayers = 64;
-
-// glibc keeps freed small blocks mapped, so without this a released toolpath still counts in
-// the peak memory next to the program that replaces it; elsewhere a no-op.
-void return_freed_memory() {
-#if defined(__GLIBC__)
-  malloc_trim(0);
-#endif
-}
 
 class Planner {
  public:
@@ -50,7 +40,7 @@ class Planner {
       for (const auto& stroke : layer.strokes) add_stroke(stroke, layer.z_mm);
       if (release) {
         std::vector<slicer::Stroke>().swap((*release)[li].strokes);
-        if (li % kTrimEveryLayers == kTrimEveryLayers - 1) return_freed_memory();
+        if (li % kTrimEveryLayers == kTrimEveryLayers - 1) slicer::release_free_memory();
       }
     }
     return std::move(p_);

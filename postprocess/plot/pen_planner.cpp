@@ -8,6 +8,7 @@
 #include "machines/plotter_kinematics.h"
 #include "postprocess/plot/plot_layout.h"
 #include "slicer/input_error.h"
+#include "slicer/memory.h"
 #include "slicer/params.h"
 
 namespace strand::post {
@@ -38,6 +39,16 @@ class PenProgram {
   PenProgram(const machines::MachineProfile& m, double bow_mm) : m_(m), bow_mm_(bow_mm) {}
 
   slicer::MotionProgram& program() { return p_; }
+
+  // Room for the moves of `strokes` when no draw move needs splitting (travel, pen down and
+  // dwell, one move per segment, pen up and dwell; the way home), so the program is allocated
+  // once instead of growing past twice its size.
+  void reserve(const std::vector<slicer::Stroke>& strokes) {
+    std::size_t n = 1;
+    for (const auto& s : strokes) n += 5 + s.segments.size();
+    p_.moves.reserve(n);
+    p_.dwells_s.reserve(2 * strokes.size());
+  }
 
   void start(const Vec2& home) {
     p_.layers.push_back({0.0, 0.0});
@@ -98,7 +109,10 @@ slicer::MotionProgram plan_pen(const slicer::Toolpath& t, const machines::Machin
                      " (mm) on " + m.name + " (its step size and 3-decimal axes already cost " +
                      slicer::short_number(std::round(rounding * 1e5) / 1e5) + " mm)");
   }
+  // Stroke copies freed by merging and ordering go back to the OS before the program grows.
+  slicer::release_free_memory();
   PenProgram p(m, bow);
+  p.reserve(t.layers[0].strokes);
   const Vec2 home = m.plotter.setup.home_mm;
   p.start(home);
   const auto& pen = m.plotter.pen;
