@@ -1,6 +1,8 @@
 // glibc's malloc_trim, where available.
 #include "slicer/memory.h"
 
+#include <cstdlib>  // defines __GLIBC__ on glibc systems, tested below
+
 #if defined(__GLIBC__)
 #include <malloc.h>
 #endif
