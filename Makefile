@@ -3,7 +3,9 @@
 
 DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev libcli11-dev \
                    libgtest-dev libbenchmark-dev libpugixml-dev libpolyclipping-dev libtbb-dev \
-                   libcairo2-dev libtinygltf-dev libcgal-dev chromium python3
+                   libcairo2-dev libtinygltf-dev libcgal-dev chromium python3 libhersheyfont-dev \
+                   hershey-fonts-data libfreetype-dev libfontconfig-dev fonts-dejavu-core \
+                   libpotrace-dev libstb-dev libnetpbm-dev
 MAKEFLAGS += --no-print-directory
 BUILD_DIR := build
 STRAND := $(BUILD_DIR)/cli/strand

@@ -8,6 +8,7 @@
 #include "patterns/registry.h"
 #include "cli/commands.h"
 #include "cli/job_runner.h"
+#include "cli/param_flags.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -19,43 +20,13 @@ namespace strand::cli {
 namespace {
 
 struct GenerateArgs {
-  std::map<std::string, std::string> text;         // flag -> raw text
-  std::map<std::string, CLI::Option*> options;
+  ParamFlags flags;
   std::string machine = "deltawasp-2040-clay";
   std::string output;
   std::string report;
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
   bool viewer_e = false;
 };
-
-std::string help_for(const slicer::ParamDef& d) {
-  std::string h = d.help;
-  if (!d.unit.empty()) h += " [" + d.unit + "]";
-  if (!d.default_value.is_null()) {
-    const auto& v = d.default_value;
-    h += " (default " +
-         (v.is_string() ? v.get<std::string>() : v.is_number() ? slicer::short_number(v.get<double>()) : v.dump()) +
-         ")";
-  } else if (!d.default_text.empty()) {
-    h += " (default " + d.default_text + ")";
-  }
-  return h;
-}
-
-// The placeholder shown in --help: the unit for numbers, the shape for lists and sizes.
-std::string type_name_for(const slicer::ParamDef& d) {
-  switch (d.type) {
-    case slicer::ParamType::Integer: return "N";
-    case slicer::ParamType::NumberList: return "LIST";
-    case slicer::ParamType::Size2: return "WxD";
-    case slicer::ParamType::Text: return "NAME";
-    case slicer::ParamType::Number: break;
-  }
-  if (d.unit == "mm") return "MM";
-  if (d.unit == "mm/min") return "MM_PER_MIN";
-  if (d.unit == "deg") return "DEG";
-  return "X";
-}
 
 // The shared tail of `strand <generator>` and `strand job`: nothing is written unless
 // every step succeeded.
@@ -71,11 +42,7 @@ int run_and_print(const patterns::GeneratorSpec& spec, const nlohmann::json& giv
 
 int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
   const auto& table = spec.table();
-  nlohmann::json given = nlohmann::json::object();
-  for (const auto& d : table.defs) {
-    if (a.options.at(d.key)->count() > 0) given[d.key] = slicer::parse_param_text(table, d, a.text.at(d.key));
-  }
-  return run_and_print(spec, given, {a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e});
+  return run_and_print(spec, given_params(table, a.flags), {a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e});
 }
 
 // Job file: {"generator", "machine", "params": {flag: value}, "output", "report",
@@ -97,10 +64,7 @@ void add_generator_commands(CLI::App& app, Action& action) {
   for (const auto& spec : patterns::generators()) {
     auto args = std::make_shared<GenerateArgs>();
     CLI::App* sub = app.add_subcommand(spec.name, spec.summary);
-    for (const auto& d : spec.table().defs) {
-      args->options[d.key] =
-          sub->add_option("--" + d.key, args->text[d.key], help_for(d))->type_name(type_name_for(d));
-    }
+    add_param_flags(sub, spec.table(), args->flags);
     sub->add_option("--machine", args->machine, "machine profile name or path to a .json profile (default deltawasp-2040-clay)");
     sub->add_option("-o,--output", args->output, "G-code file to write (default " + spec.name + ".gcode)");
     sub->add_option("--report", args->report, "write a JSON report here");

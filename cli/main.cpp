@@ -47,6 +47,9 @@ int run(int argc, char** argv) {
   strand::cli::add_job_command(app, action);
   strand::cli::add_machines_command(app, action);
   strand::cli::add_plot_command(app, action);
+  strand::cli::add_text_command(app, action);
+  strand::cli::add_trace_command(app, action);
+  strand::cli::add_send_command(app, action);
   strand::cli::add_check_command(app, action);
   strand::cli::add_flow_command(app, action);
   strand::cli::add_sweep_command(app, action);

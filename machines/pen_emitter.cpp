@@ -85,16 +85,8 @@ class PenWriter {
     const PenSetup& p = pen_;
     switch (p.lift) {
       case PenLift::Servo:
-        if (m_.firmware == Firmware::Grbl) {
-          line("M3 S" + fmt_fixed(up ? p.up_value : p.down_value, 0) + (up ? " ; pen up" : " ; pen down"));
-        } else {
-          line("M280 P" + std::to_string(p.servo_index) + " S" +
-               fmt_fixed(up ? p.up_value : p.down_value, 0) + (up ? " ; pen up" : " ; pen down"));
-        }
-        break;
       case PenLift::Z:
-        line(std::string(up ? "G0" : "G1") + " Z" + fmt_axis(up ? p.z_up_mm : p.z_down_mm) +
-             (up ? "" : " F" + fmt_feed(m_.limits.z_feed_mm_per_min)) + (up ? " ; pen up" : " ; pen down"));
+        line(pen_lift_command(m_, up));
         break;
       case PenLift::Drum:
         if (tool_ < 0) return;  // no marker engaged: nothing touches the wall
@@ -117,6 +109,22 @@ class PenWriter {
 };
 
 }  // namespace
+
+std::string pen_lift_command(const MachineProfile& m, bool up) {
+  const PenSetup& p = m.plotter.pen;
+  const std::string why = up ? " ; pen up" : " ; pen down";
+  switch (p.lift) {
+    case PenLift::Servo:
+      if (m.firmware == Firmware::Grbl) return "M3 S" + fmt_fixed(up ? p.up_value : p.down_value, 0) + why;
+      return "M280 P" + std::to_string(p.servo_index) + " S" + fmt_fixed(up ? p.up_value : p.down_value, 0) + why;
+    case PenLift::Z:
+      return std::string(up ? "G0" : "G1") + " Z" + fmt_axis(up ? p.z_up_mm : p.z_down_mm) +
+             (up ? "" : " F" + fmt_feed(m.limits.z_feed_mm_per_min)) + why;
+    case PenLift::Drum:
+      break;
+  }
+  throw std::logic_error("pen_lift_command: " + m.name + " lifts its pens with a drum");
+}
 
 double drum_engage_deg(const PenSetup& pen, int k) { return (k + 1) * pen.drum.engage_step_deg; }
 double drum_rest_deg(const PenSetup& pen, int k) {

@@ -22,6 +22,11 @@ inline constexpr int kPenAxisDecimals = 3;
 std::string emit_pen_gcode(const slicer::MotionProgram& program, const MachineProfile& machine,
                            const std::vector<std::string>& header);
 
+// The command that lifts (up) or drops the pen on a servo or Z-lift plotter, with its
+// comment: "M280 P0 S90 ; pen up", "M3 S50 ; pen up" (GRBL), "G0 Z2.000 ; pen up".
+// Throws std::logic_error for drum machines (their pen state depends on the marker).
+std::string pen_lift_command(const MachineProfile& m, bool up);
+
 // Drum angles of the 1-based marker k.
 double drum_engage_deg(const PenSetup& pen, int k);
 double drum_rest_deg(const PenSetup& pen, int k);

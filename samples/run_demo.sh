@@ -21,6 +21,15 @@ done
 "$strand" plot "$samples/plot/shapes.svg" --machine xy-plotter-servo --fit 380x260 -o plot-shapes.gcode --report plot-shapes.json | tee plot-shapes-summary.txt
 "$strand" check plot-shapes.gcode --machine xy-plotter-servo | tail -n 1
 for ext in png html; do "$strand" preview plot-shapes.gcode -o "plot-shapes-preview.$ext"; done
+# Issue 14: lettering with filled shapes, a grey photo traced into two pen layers, a label.
+"$strand" plot "$samples/plot/lettering.svg" --machine xy-plotter-servo --hatch-spacing 0.8 -o plot-lettering.gcode --report plot-lettering.json | tee plot-lettering-summary.txt
+"$strand" plot "$samples/plot/photo.png" --trace --levels 2 --hatch-spacing 1.2 --fit 240x160 --machine xy-plotter-servo -o plot-photo.gcode --report plot-photo.json | tee plot-photo-summary.txt
+"$strand" trace "$samples/plot/photo.png" --levels 2 -o photo-traced.svg
+"$strand" text "scaffold d=0.84 gap=1.6\nplate 3" --size 6 -o label.svg
+for plot in plot-lettering plot-photo; do
+  "$strand" check "$plot.gcode" --machine xy-plotter-servo | tail -n 1
+  for ext in png html; do "$strand" preview "$plot.gcode" -o "$plot-preview.$ext"; done
+done
 for sweep in "$samples"/sweeps/*.json; do
   [ -e "$sweep" ] || continue
   "$strand" sweep "$sweep" -o "$(basename "$sweep" .json)"

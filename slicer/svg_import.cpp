@@ -10,6 +10,7 @@
 
 #include "slicer/input_error.h"
 #include "slicer/svg_syntax.h"
+#include "slicer/svg_text_reader.h"
 #include "slicer/units.h"
 
 namespace strand::slicer {
@@ -26,6 +27,7 @@ struct Style {
   std::string stroke = "none";
   bool evenodd = false;
   bool visible = true;
+  TextStyle text;
 };
 
 struct Context {
@@ -49,6 +51,7 @@ struct Importer {
     }
   }
   void shape(const pugi::xml_node& n, const Context& c, std::vector<SubPath> paths);
+  void text(const pugi::xml_node& n, const TextStyle& parent_text, const Context& c);
   double len(const pugi::xml_node& n, const char* attr, double fallback = 0.0) const {
     const auto a = n.attribute(attr);
     if (!a) return fallback;
@@ -65,7 +68,8 @@ std::string trim(std::string_view s) {
 // Presentation attributes first, then the style attribute (which wins).
 std::map<std::string, std::string> properties(const pugi::xml_node& n) {
   std::map<std::string, std::string> p;
-  for (const char* k : {"fill", "stroke", "fill-rule", "display", "visibility"}) {
+  for (const char* k : {"fill", "stroke", "fill-rule", "display", "visibility", "font-size", "font-family",
+                        "font-weight", "font-style", "text-anchor", "xml:space"}) {
     if (const auto a = n.attribute(k)) p[k] = trim(a.value());
   }
   std::string_view style = n.attribute("style").value();
@@ -189,6 +193,20 @@ void Importer::shape(const pugi::xml_node& n, const Context& c, std::vector<SubP
   if (!s.paths.empty() && (s.stroked || s.filled)) out.shapes.push_back(std::move(s));
 }
 
+void Importer::text(const pugi::xml_node& n, const TextStyle& parent_text, const Context& c) {
+  SvgText t;
+  t.to_mm = c.to_mm;
+  t.stroked = c.style.stroke != "none" && !c.style.stroke.empty();
+  t.filled = c.style.fill != "none" && !c.style.fill.empty();
+  t.stroke_color = t.stroked ? normalise_color(c.style.stroke) : "";
+  t.fill_color = t.filled ? normalise_color(c.style.fill) : "";
+  t.group_ids = c.group_ids;
+  t.layer_labels = c.layer_labels;
+  // the reader applies the element's own font properties (relative sizes must apply once)
+  t.chars = read_text_chars(n, parent_text, &properties, origin);
+  if (!t.chars.empty()) out.texts.push_back(std::move(t));
+}
+
 // Applies the element's style and transform to `c`; false when it is display:none.
 bool inherit(const pugi::xml_node& n, Context& c, const std::string& origin) {
   const auto props = properties(n);
@@ -197,6 +215,7 @@ bool inherit(const pugi::xml_node& n, Context& c, const std::string& origin) {
   if (props.count("stroke")) c.style.stroke = props.at("stroke");
   if (props.count("fill-rule")) c.style.evenodd = props.at("fill-rule") == "evenodd";
   if (props.count("visibility")) c.style.visible = props.at("visibility") == "visible";
+  inherit_text_style(props, c.style.text, origin);
   if (const auto t = n.attribute("transform")) {
     try {
       c.to_mm = compose(c.to_mm, parse_transform(t.value()));
@@ -243,11 +262,15 @@ void Importer::walk(const pugi::xml_node& n, const Context& parent) {
     }
     return;
   }
-  if (name == "text" || name == "image" || name == "foreignObject") {
+  if (name == "image" || name == "foreignObject") {
     ++skipped[name];
     return;
   }
   if (!c.style.visible) return;
+  if (name == "text") {
+    text(n, parent.style.text, c);
+    return;
+  }
   std::vector<SubPath> paths;
   if (name == "path") {
     std::string error;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "slicer/curves.h"
+#include "slicer/svg_text.h"
 
 namespace strand::slicer {
 
@@ -26,13 +27,15 @@ struct SvgShape {
 
 struct SvgDrawing {
   std::vector<SvgShape> shapes;          // document order
-  std::vector<std::string> skipped;      // "text (2)", "image (1)": elements not drawn
+  std::vector<SvgText> texts;            // <text> elements, document order (not yet drawn)
+  std::vector<std::string> skipped;      // "image (1)": elements not drawn
   Vec2 page_mm = Vec2::Zero();           // the root viewport's size
 };
 
 // Parses an SVG document. Malformed XML, a non-svg root, unknown units and references to
 // missing ids throw InputError naming `origin`; hidden elements (display:none,
-// visibility:hidden) are left out; text is listed in `skipped`.
+// visibility:hidden) are left out; text is kept as characters in `texts` (text_layout draws
+// it); images are listed in `skipped`.
 SvgDrawing import_svg(std::string_view text, const std::string& origin);
 
 // "#F00", "red", "rgb(255,0,0)" -> "#ff0000"; anything else lower-cased as is.

@@ -140,7 +140,30 @@ void check_reachable(const slicer::Toolpath& t, const machines::MachineProfile& 
   }
 }
 
+// The fill of a filled shape, then its outline (drawn last so it covers the line ends) unless
+// the shape is stroked anyway.
+std::vector<slicer::Polyline> fill_lines(const std::vector<slicer::Polyline>& outlines,
+                                         const slicer::SvgShape& shape, int pen, double width_mm,
+                                         const PlotOptions& o) {
+  const double spacing = per_pen(o.hatch_spacing_mm, pen, width_mm);
+  std::vector<slicer::Polyline> lines;
+  if (o.fill == FillStyle::Hatch) {
+    lines = hatch_fill(outlines, shape.evenodd, spacing, per_pen(o.hatch_angle_deg, pen, 45.0));
+  } else if (o.fill == FillStyle::Concentric) {
+    lines = concentric_fill(outlines, shape.evenodd, spacing);
+  }
+  if (o.fill != FillStyle::None && !shape.stroked) {
+    for (auto& pl : fill_outline(outlines)) lines.push_back(std::move(pl));
+  }
+  return lines;
+}
+
 }  // namespace
+
+double per_pen(const std::vector<double>& values, int pen, double fallback) {
+  if (values.empty()) return fallback;
+  return values[std::min<std::size_t>(std::max(pen, 1) - 1, values.size() - 1)];
+}
 
 std::vector<int> assign_pens(const slicer::SvgDrawing& d, const std::string& rules_text, int machine_pens) {
   const auto rules = parse_rules(rules_text);
@@ -175,9 +198,7 @@ slicer::Toolpath layout_plot(const slicer::SvgDrawing& d, const machines::Machin
     for (const auto& p : shape.paths) outlines.push_back(slicer::flatten(slicer::transformed(p, to_paper), tol));
     const int tool = pens[i] - 1;
     if (shape.filled) {
-      for (const auto& h : hatch_fill(outlines, shape.evenodd, width, o.hatch_angle_deg)) {
-        strokes.push_back(stroke_of(h, tool, width));
-      }
+      for (const auto& pl : fill_lines(outlines, shape, pens[i], width, o)) strokes.push_back(stroke_of(pl, tool, width));
     }
     if (shape.stroked) {
       for (const auto& pl : outlines) strokes.push_back(stroke_of(pl, tool, width));

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "machines/profile.h"
+#include "postprocess/plot/fill.h"
 #include "slicer/svg_import.h"
 #include "slicer/toolpath.h"
 
@@ -21,8 +22,16 @@ struct PlotOptions {
   double tolerance_mm = 0.05;                // end-to-end bound: flattening + bow + rounding
   std::string pens;                          // "key=pen,..." (group id, layer label, colour)
   bool order = true;
-  double hatch_angle_deg = 45.0;
+  FillStyle fill = FillStyle::Hatch;         // what a filled shape gets besides its outline
+  // Per pen (pen 1 first; the last value holds for the pens after it). Spacing empty = the
+  // pen's line width.
+  std::vector<double> hatch_angle_deg = {45.0};
+  std::vector<double> hatch_spacing_mm;
 };
+
+// The value of a per-pen list for the 1-based `pen`: its entry, the last entry past the end,
+// `fallback` when the list is empty.
+double per_pen(const std::vector<double>& values, int pen, double fallback);
 
 // Share of the tolerance spent on curve flattening; the rest goes to the kinematic bow of
 // straight segments and to number rounding.

@@ -89,7 +89,7 @@ TEST(Hostile, JsonNestedOneHundredThousandDeepIsRefusedNotOverflowed) {
 
 TEST(Hostile, SweepWhereWithDeepNestingIsRefused) {
   const auto dir = fresh_dir("hostile-where");
-  for (const std::string where : {std::string(100000, '(') + "gap" + std::string(100000, ')') + " > 1",
+  for (const std::string& where : {std::string(100000, '(') + "gap" + std::string(100000, ')') + " > 1",
                                   std::string(100000, '-') + "gap > 1",
                                   std::string(40, '(') + "gap" + std::string(40, ')') + " > 1"}) {
     write(dir + "/s.json", R"({"job": {"generator": "scaffold", "params": {"nozzle": 0.84,
@@ -203,7 +203,7 @@ TEST(Hostile, CheckJsonOfANonUtf8FileIsValidJson) {
   std::ofstream(dir + "/x.gcode", std::ios::binary) << "G1 X\xb9\nG1 X10 Y0\n";
   const auto r = run_strand("check x.gcode --json", dir);
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_NO_THROW((void)nlohmann::json::parse(r.out)) << r.out;
+  EXPECT_TRUE(nlohmann::json::accept(r.out)) << r.out;
 }
 
 }  // namespace

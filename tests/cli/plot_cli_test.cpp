@@ -13,6 +13,7 @@
 #include "machines/profile.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "slicer/file_io.h"
+#include "slicer/svg_import.h"
 #include "tests/support/cli_runner.h"
 
 namespace strand::testing {
@@ -214,6 +215,84 @@ TEST(PlotCli, EverySamplePassesCheckOnEveryPlotter) {
   }
 }
 
+// Issue 14: text is drawn by default and counted; --text none keeps it skipped.
+TEST(PlotCli, TextIsDrawnAndCountedOrSkippedWithTextNone) {
+  const auto dir = fresh_dir("plottext");
+  slicer::write_file_atomic(dir + "/t.svg",
+      "<svg xmlns='http://www.w3.org/2000/svg' width='100mm' height='50mm' viewBox='0 0 100 50'>"
+      "<rect width='100' height='50' fill='none' stroke='black'/><text x='10' y='30' font-size='10'>AB</text></svg>");
+  const auto drawn = run_strand("plot t.svg -o a.gcode --report a.json", dir);
+  ASSERT_EQ(drawn.exit_code, 0) << drawn.err;
+  EXPECT_NE(drawn.out.find("text           1 element(s), 2 glyphs (hershey:futural)"), std::string::npos) << drawn.out;
+  const auto skipped = run_strand("plot t.svg --text none -o b.gcode --report b.json", dir);
+  ASSERT_EQ(skipped.exit_code, 0) << skipped.err;
+  EXPECT_NE(skipped.out.find("skipped        text (1)"), std::string::npos) << skipped.out;
+  const auto a = nlohmann::json::parse(slurp(dir + "/a.json"));
+  const auto b = nlohmann::json::parse(slurp(dir + "/b.json"));
+  // A: 3 strokes, B: 2 strokes; both letters add pen-down length
+  EXPECT_GT(a["estimate"]["draw_mm"].get<double>(), b["estimate"]["draw_mm"].get<double>() + 20.0);
+  EXPECT_EQ(b["skipped_elements"], nlohmann::json::array({"text (1)"}));
+}
+
+TEST(TextCli, WritesAnSvgThatPlotsAndGcodeDirectly) {
+  const auto dir = fresh_dir("textcli");
+  const auto svg = run_strand("text 'd=0.84\\nl=1.6' --size 6 -o label.svg", dir);
+  ASSERT_EQ(svg.exit_code, 0) << svg.err;
+  EXPECT_NE(svg.out.find("11 glyphs (hershey:futural)"), std::string::npos) << svg.out;
+  const auto plot = run_strand("plot label.svg -o label.gcode", dir);
+  ASSERT_EQ(plot.exit_code, 0) << plot.err;
+  const auto direct = run_strand("text 'd=0.84\\nl=1.6' --size 6 -o direct.gcode --report direct.json", dir);
+  ASSERT_EQ(direct.exit_code, 0) << direct.err;
+  const auto report = nlohmann::json::parse(slurp(dir + "/direct.json"));
+  // two lines 1.25 em apart: about 6 mm of cap height plus 7.5 mm between baselines
+  EXPECT_NEAR(report["estimate"]["size_mm"][1].get<double>(), 0.66 * 6 + 7.5, 1.0);
+  EXPECT_EQ(run_strand("text x --font 'No Such Face' -o x.svg", dir).exit_code, 2);
+  EXPECT_FALSE(exists(dir + "/x.svg"));
+  expect_input_error(run_strand("text x -o x.pdf", dir), "text.output");
+}
+
+// Issue 14: a grey photo traced into two pen layers, level k on pen k, cross-hatched.
+TEST(TraceCli, PhotoTracesIntoTwoPenLayers) {
+  const auto dir = fresh_dir("trace");
+  const auto svg = run_strand("trace '" + kSamples + "photo.png' --levels 2 -o photo.svg", dir);
+  ASSERT_EQ(svg.exit_code, 0) << svg.err;
+  const auto d = slicer::import_svg(slurp(dir + "/photo.svg"), "photo.svg");
+  ASSERT_GE(d.shapes.size(), 2u);
+  EXPECT_EQ(d.shapes.front().group_ids, std::vector<std::string>{"m1"});
+  EXPECT_EQ(d.shapes.back().group_ids, std::vector<std::string>{"m2"});
+  EXPECT_LT((d.page_mm - slicer::Vec2(60, 40)).norm(), 1e-9);  // 240 x 160 px at 0.25 mm
+  const auto plot = run_strand("plot '" + kSamples + "photo.png' --trace --levels 2 --hatch-spacing 1.5 -o p.gcode --report p.json", dir);
+  ASSERT_EQ(plot.exit_code, 0) << plot.err;
+  const std::string g = slurp(dir + "/p.gcode");
+  EXPECT_NE(g.find(";PEN:1"), std::string::npos);
+  EXPECT_NE(g.find(";PEN:2"), std::string::npos);
+  const auto report = nlohmann::json::parse(slurp(dir + "/p.json"));
+  EXPECT_GT(report["estimate"]["draw_mm_per_pen"][0].get<double>(), report["estimate"]["draw_mm_per_pen"][1].get<double>());
+  EXPECT_EQ(run_strand("check p.gcode --machine xy-plotter-servo", dir).exit_code, 0);
+}
+
+TEST(TraceCli, BadImagesAndOptionsAreInputErrors) {
+  const auto dir = fresh_dir("tracebad");
+  slicer::write_file_atomic(dir + "/x.png", "not a png at all");
+  expect_input_error(run_strand("trace x.png -o x.svg", dir), "not an image");
+  expect_input_error(run_strand("plot x.png --trace -o x.gcode", dir), "not an image");
+  expect_input_error(run_strand("trace '" + kSamples + "photo.png' --levels 9 -o x.svg", dir), "trace.levels");
+  expect_input_error(run_strand("plot '" + kSamples + "shapes.svg' --levels 2 -o x.gcode", dir), "--trace");
+  EXPECT_FALSE(exists(dir + "/x.svg"));
+  EXPECT_FALSE(exists(dir + "/x.gcode"));
+}
+
+TEST(PlotCli, ConcentricFillsPassCheckOnEveryPlotter) {
+  const auto dir = fresh_dir("concentric");
+  for (const char* machine : kPlotters) {
+    SCOPED_TRACE(machine);
+    const auto r = run_strand("plot '" + kSamples + "lettering.svg' --machine " + std::string(machine) +
+                              " --fit 200x120 --fill concentric --hatch-spacing 1.5 -o c.gcode", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(run_strand(std::string("check c.gcode --machine ") + machine, dir).exit_code, 0);
+  }
+}
+
 class PlotBadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(PlotBadInput, ExitTwoOneLineNoFile) {
@@ -231,7 +310,11 @@ INSTANTIATE_TEST_SUITE_P(
     Cases, PlotBadInput,
     ::testing::Values(
         BadCase{"malformed_xml", "<svg><g></svg>", "", "malformed XML"},
-        BadCase{"nothing_drawable", "<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'><text>x</text></svg>", "", "nothing drawable"},
+        BadCase{"nothing_drawable", "<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'><text>x</text></svg>", "--text none", "nothing drawable"},
+        BadCase{"hershey_font_missing", "<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'><text>x</text></svg>", "--font hershey:nosuch", "hershey:nosuch"},
+        BadCase{"outline_font_missing", "<svg xmlns='http://www.w3.org/2000/svg' width='10' height='10'><text font-family='No Such Face'>x</text></svg>", "--text outline", "No Such Face"},
+        BadCase{"bad_fill", kLine, "--fill zigzag", "plot.fill"},
+        BadCase{"bad_hatch_spacing", kLine, "--hatch-spacing 0", "plot.hatch-spacing"},
         BadCase{"unknown_units", "<svg xmlns='http://www.w3.org/2000/svg' width='10furlong' height='10'/>", "", "unknown unit"},
         BadCase{"does_not_fit", kLine, "--scale 10", "does not fit"},
         BadCase{"outside_polargraph_area", kLine, "--machine polargraph --scale 2 --offset 0,-450", "tension"},

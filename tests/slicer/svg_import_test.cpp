@@ -86,15 +86,17 @@ TEST(SvgImport, UnitsAndViewBoxScaleToMillimetres) {
   EXPECT_LT((flatten(none.shapes[0].paths[0], 0.01)[0] - Vec2(0, 100)).norm(), 1e-9);
 }
 
-TEST(SvgImport, UseReferencesHiddenElementsAndText) {
+TEST(SvgImport, UseReferencesHiddenElementsAndTextKept) {
   const auto d = import_svg(doc("<defs><rect id=\"r\" width=\"5\" height=\"5\"/></defs>"
                                 "<use xlink:href=\"#r\" x=\"10\" y=\"20\"/>"
                                 "<circle r=\"3\" style=\"display: none\"/><g display=\"none\"><line x2=\"5\"/></g>"
                                 "<line x2=\"5\" visibility=\"hidden\"/><text>hi</text>"), "t");
   ASSERT_EQ(d.shapes.size(), 1u);
   EXPECT_LT((flatten(d.shapes[0].paths[0], 0.01)[0] - Vec2(10, 20)).norm(), 1e-9);
-  ASSERT_EQ(d.skipped.size(), 1u);
-  EXPECT_EQ(d.skipped[0], "text (1)");
+  // text is kept as characters for text_layout to draw (tests/slicer/text_layout_test.cpp)
+  EXPECT_TRUE(d.skipped.empty());
+  ASSERT_EQ(d.texts.size(), 1u);
+  EXPECT_EQ(d.texts[0].chars.size(), 2u);
 }
 
 TEST(SvgImport, GroupIdsAreCollectedFromEveryAncestor) {

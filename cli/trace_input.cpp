@@ -1,0 +1,78 @@
+// Trace flags, tracing a file into pen layers, and those layers as a drawing.
+#include "cli/trace_input.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "machines/gcode_format.h"
+#include "slicer/file_io.h"
+#include "slicer/image.h"
+
+namespace strand::cli {
+
+const slicer::ParamTable& trace_table() {
+  using slicer::ParamType;
+  static const slicer::ParamTable kTable{
+      "trace",
+      {
+          {"threshold", ParamType::Number, "", "grey (0 black .. 1 white) below which a pixel is ink", 0.0, true, 1.0, false, nullptr, "Otsu's threshold of the image"},
+          {"levels", ParamType::Integer, "", "pen layers: level k holds pixels darker than threshold * (N+1-k)/N, on pen k", 1.0, false, 8.0, false, 1},
+          {"turdsize", ParamType::Integer, "px", "speckles up to this area are dropped", 0.0, false, 1e6, false, 2},
+          {"alphamax", ParamType::Number, "", "corner threshold: 0 polygons, 1.334 no corners (smoother curves)", 0.0, false, 1.3334, false, 1.0},
+          {"opttolerance", ParamType::Number, "px", "curve joining tolerance, 0 keeps every potrace segment", 0.0, false, 10.0, false, 0.2},
+          {"pixel-size", ParamType::Number, "mm", "size of one image pixel in the drawing", 0.0, true, 100.0, false, 0.25},
+      }};
+  return kTable;
+}
+
+slicer::TraceOptions trace_options(const nlohmann::json& v) {
+  slicer::TraceOptions o;
+  if (v.contains("threshold")) o.threshold = v.at("threshold").get<double>();
+  o.levels = v.at("levels").get<int>();
+  o.turdsize = v.at("turdsize").get<int>();
+  o.alphamax = v.at("alphamax").get<double>();
+  o.opttolerance = v.at("opttolerance").get<double>();
+  o.pixel_mm = v.at("pixel-size").get<double>();
+  return o;
+}
+
+TracedImage trace_file(const std::string& path, const slicer::TraceOptions& o) {
+  const slicer::GreyImage image = slicer::decode_image(slicer::read_file(path), path);
+  TracedImage t;
+  t.trace = slicer::trace_image(image, o);
+  std::string greys, counts;
+  for (std::size_t k = 0; k < t.trace.levels.size(); ++k) {
+    const auto& level = t.trace.levels[k];
+    const int g = static_cast<int>(std::lround(level.threshold * 255.0 / 2.0));  // mid-grey of the band
+    char colour[8];
+    std::snprintf(colour, sizeof colour, "#%02x%02x%02x", g, g, g);
+    slicer::SvgShape s;
+    s.element = "path";
+    s.paths = level.paths;
+    s.filled = true;
+    s.evenodd = true;
+    s.fill_color = colour;
+    const std::string n = std::to_string(k + 1);
+    if (!s.paths.empty()) t.layers.push_back({"m" + n, "level " + n, {s}});
+    greys += (k ? ", " : "") + machines::fmt_fixed(level.threshold, 2);
+    counts += (k ? " + " : "") + std::to_string(level.paths.size());
+  }
+  t.summary = std::to_string(t.trace.levels.size()) + " level(s) below grey " + greys + ": " + counts +
+              " outline(s), " + std::to_string(image.width) + " x " + std::to_string(image.height) + " px";
+  return t;
+}
+
+slicer::SvgDrawing drawing_of(const std::vector<slicer::SvgLayer>& layers, const slicer::Vec2& size_mm) {
+  slicer::SvgDrawing d;
+  d.page_mm = size_mm;
+  for (const auto& l : layers) {
+    for (auto s : l.shapes) {
+      s.group_ids = {l.id};
+      s.layer_labels = {l.label};
+      d.shapes.push_back(std::move(s));
+    }
+  }
+  return d;
+}
+
+}  // namespace strand::cli

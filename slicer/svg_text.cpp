@@ -1,0 +1,176 @@
+// Reading SVG text: inherited font properties, white-space rules and the x/y/dx/dy lists
+// that place each addressable character (SVG 1.1, 10.4-10.5 and 10.15).
+#include "slicer/svg_text.h"
+
+#include <fontconfig/fontconfig.h>
+
+#include <algorithm>
+#include <cctype>
+#include <pugixml.hpp>
+
+#include "slicer/input_error.h"
+#include "slicer/svg_syntax.h"
+#include "slicer/svg_text_reader.h"
+
+namespace strand::slicer {
+
+namespace {
+
+// CSS absolute-size keywords in px (CSS 2.1 suggested table at medium = 16 px).
+const std::map<std::string, double> kSizeKeywords = {
+    {"xx-small", 9}, {"x-small", 10}, {"small", 13}, {"medium", 16},
+    {"large", 18},   {"x-large", 24}, {"xx-large", 32}};
+
+double font_size_px(const std::string& text, double parent_px, const std::string& origin) {
+  if (kSizeKeywords.count(text)) return kSizeKeywords.at(text);
+  if (text == "smaller") return parent_px / 1.2;
+  if (text == "larger") return parent_px * 1.2;
+  const auto relative = [&](std::size_t suffix, double per_unit) {
+    return parse_number_list(text.substr(0, text.size() - suffix)).at(0) * per_unit;
+  };
+  try {
+    if (text.size() > 1 && text.back() == '%') return relative(1, parent_px / 100.0);
+    if (text.size() > 2 && text.compare(text.size() - 2, 2, "em") == 0) return relative(2, parent_px);
+    return parse_length_px(text, origin + ": font-size");
+  } catch (const std::out_of_range&) {
+    throw InputError(origin + ": font-size = \"" + text + "\": must be a length");
+  }
+}
+
+// One raw character and the innermost element it came from.
+struct RawChar {
+  char32_t code;
+  int owner;
+};
+
+struct Element {
+  pugi::xml_node node;
+  TextStyle style;
+  std::size_t begin = 0, end = 0;  // range of its characters (raw indices, then kept ones)
+};
+
+struct Reader {
+  PropertyReader properties;
+  std::string origin;
+  std::vector<RawChar> raw;
+  std::vector<Element> elements;  // pre-order
+
+  void walk(const pugi::xml_node& n, TextStyle style) {
+    const auto props = properties(n);
+    if (props.count("display") && props.at("display") == "none") return;
+    inherit_text_style(props, style, origin);
+    const int id = static_cast<int>(elements.size());
+    elements.push_back({n, style, raw.size(), raw.size()});
+    for (const auto& child : n.children()) {
+      if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
+        for (char32_t c : utf8_to_u32(child.value())) raw.push_back({c, id});
+      } else if (child.type() == pugi::node_element) {
+        walk(child, style);
+      }
+    }
+    elements[id].end = raw.size();
+  }
+};
+
+bool is_space(char32_t c) { return c == U' ' || c == U'\t' || c == U'\n' || c == U'\r'; }
+
+// SVG 2 / CSS white-space: newlines and tabs are spaces; without xml:space="preserve"
+// runs of spaces collapse to one and leading and trailing spaces go. Returns the raw index
+// of each kept character.
+std::vector<std::size_t> kept_characters(const std::vector<RawChar>& raw, bool preserve) {
+  std::vector<std::size_t> kept;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    if (!preserve && is_space(raw[i].code) && (kept.empty() || is_space(raw[kept.back()].code))) continue;
+    kept.push_back(i);
+  }
+  if (!preserve) {
+    while (!kept.empty() && is_space(raw[kept.back()].code)) kept.pop_back();
+  }
+  return kept;
+}
+
+std::vector<double> list_attribute(const pugi::xml_node& n, const char* name, const std::string& origin) {
+  std::vector<double> out;
+  const auto a = n.attribute(name);
+  if (!a) return out;
+  // lengths with units, separated by commas or spaces
+  std::string item;
+  const std::string text = std::string(a.value()) + " ";
+  for (char ch : text) {
+    if (ch == ',' || std::isspace(static_cast<unsigned char>(ch))) {
+      if (!item.empty()) out.push_back(parse_length_px(item, origin + ": <" + n.name() + "> " + name));
+      item.clear();
+    } else {
+      item += ch;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void inherit_text_style(const std::map<std::string, std::string>& props, TextStyle& style,
+                        const std::string& origin) {
+  if (props.count("font-size")) style.font_size = font_size_px(props.at("font-size"), style.font_size, origin);
+  if (props.count("font-family")) style.font_family = props.at("font-family");
+  if (props.count("font-weight")) style.font_weight = props.at("font-weight");
+  if (props.count("font-style")) style.font_style = props.at("font-style");
+  if (props.count("text-anchor")) {
+    const std::string& a = props.at("text-anchor");
+    style.anchor = a == "middle" ? TextAnchor::Middle : a == "end" ? TextAnchor::End : TextAnchor::Start;
+  }
+  if (props.count("xml:space")) style.preserve_space = props.at("xml:space") == "preserve";
+}
+
+std::vector<TextChar> read_text_chars(const pugi::xml_node& text, const TextStyle& inherited,
+                                      PropertyReader properties, const std::string& origin) {
+  Reader r{properties, origin, {}, {}};
+  r.walk(text, inherited);
+  if (r.elements.empty()) return {};
+  const std::vector<std::size_t> kept = kept_characters(r.raw, r.elements[0].style.preserve_space);
+  std::vector<TextChar> out;
+  for (std::size_t k : kept) {
+    TextChar c;
+    c.code = is_space(r.raw[k].code) ? U' ' : r.raw[k].code;
+    c.style = r.elements[r.raw[k].owner].style;
+    out.push_back(c);
+  }
+  // Lists of outer elements first; inner elements override them for their own characters.
+  for (const auto& e : r.elements) {
+    const auto first = std::lower_bound(kept.begin(), kept.end(), e.begin) - kept.begin();
+    const auto last = std::lower_bound(kept.begin(), kept.end(), e.end) - kept.begin();
+    const auto apply = [&](const char* name, auto set) {
+      const auto values = list_attribute(e.node, name, origin);
+      for (std::size_t i = 0; i < values.size() && first + static_cast<long>(i) < last; ++i) set(out[first + i], values[i]);
+    };
+    apply("x", [](TextChar& c, double v) { c.x = v; });
+    apply("y", [](TextChar& c, double v) { c.y = v; });
+    apply("dx", [](TextChar& c, double v) { c.dx = v; });
+    apply("dy", [](TextChar& c, double v) { c.dy = v; });
+  }
+  return out;
+}
+
+std::u32string utf8_to_u32(const std::string& text) {
+  std::u32string out;
+  const auto* bytes = reinterpret_cast<const FcChar8*>(text.data());
+  for (std::size_t i = 0; i < text.size();) {
+    FcChar32 c = 0;
+    const int used = FcUtf8ToUcs4(bytes + i, &c, static_cast<int>(text.size() - i));
+    out.push_back(used > 0 ? static_cast<char32_t>(c) : U'\uFFFD');
+    i += used > 0 ? static_cast<std::size_t>(used) : 1;
+  }
+  return out;
+}
+
+std::string u32_to_utf8(const std::u32string& text) {
+  std::string out;
+  for (char32_t c : text) {
+    FcChar8 buf[FC_UTF8_MAX_LEN];
+    const int n = FcUcs4ToUtf8(static_cast<FcChar32>(c), buf);
+    out.append(reinterpret_cast<const char*>(buf), static_cast<std::size_t>(n));
+  }
+  return out;
+}
+
+}  // namespace strand::slicer

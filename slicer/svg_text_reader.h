@@ -1,0 +1,25 @@
+// Internal to the SVG importer: the characters of one <text> element read from the pugixml
+// tree (white space, tspan nesting, x/y/dx/dy lists). Not for use outside slicer/.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "slicer/svg_text.h"
+
+namespace pugi {
+class xml_node;
+}
+
+namespace strand::slicer {
+
+// An element's presentation properties (attributes, then its style attribute).
+using PropertyReader = std::map<std::string, std::string> (*)(const pugi::xml_node&);
+
+// Characters of `text` (a <text> element) with their positions and styles; hidden tspans
+// (display:none) are left out. Throws InputError naming `origin` for malformed lengths.
+std::vector<TextChar> read_text_chars(const pugi::xml_node& text, const TextStyle& inherited,
+                                      PropertyReader properties, const std::string& origin);
+
+}  // namespace strand::slicer
