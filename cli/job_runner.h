@@ -51,7 +51,8 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 std::string viewer_output_path(const std::string& gcode_path);
 
 // produce_job, then writes the G-code, viewer copy and report as one transaction (all or
-// none); returns what was produced.
+// none); in release builds the G-code streams into its temp file as it is formatted
+// (Produced::gcode stays empty). Returns what was produced.
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& settings);
 
