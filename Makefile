@@ -3,7 +3,7 @@
 
 DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev libcli11-dev \
                    libgtest-dev libbenchmark-dev libpugixml-dev libpolyclipping-dev libtbb-dev \
-                   libcairo2-dev libtinygltf-dev chromium libhersheyfont-dev hershey-fonts-data \
+                   libcairo2-dev libtinygltf-dev chromium python3 libhersheyfont-dev hershey-fonts-data \
                    libfreetype-dev libfontconfig-dev fonts-dejavu-core libpotrace-dev libstb-dev \
                    libnetpbm-dev libcgal-dev libopenmesh-dev
 MAKEFLAGS += --no-print-directory
@@ -16,7 +16,7 @@ SANITIZE_PACKAGES := clang libclang-rt-14-dev
 SAN_DIR := build-asan
 FUZZ_SECONDS ?= 600
 
-.PHONY: all deps build run test bench clean sanitize fuzz fuzz-ci sanitize-build
+.PHONY: all deps build run test bench bench-micro clean sanitize fuzz fuzz-ci sanitize-build
 
 all: build
 
@@ -44,7 +44,12 @@ run: build
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$$(nproc)
 
+# One table of the issue-13 figures (cpu, memory per move/stroke, pen-up travel, check and
+# sweep times) from the strand program; bench-micro runs the Google Benchmark programs.
 bench: build
+	@python3 tests/bench/bench_table.py $(STRAND)
+
+bench-micro: build
 	@$(BUILD_DIR)/tests/bench/strand_bench
 
 sanitize-build: deps

@@ -106,8 +106,17 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   return s;
 }
 
-post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
-                           const JobSettings& s) {
+namespace {
+
+struct Prepared {
+  slicer::Toolpath toolpath;
+  machines::MachineProfile machine;
+  post::PlanOptions options;
+};
+
+// Everything a job checks before planning: arc tolerance, machine, parameters.
+Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
+                 const JobSettings& s) {
   if (!(s.arc_tolerance_mm > 0.0 && s.arc_tolerance_mm <= 1.0)) {
     throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
                      ": must be in (0, 1] (mm)");
@@ -118,21 +127,31 @@ post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohm
         "with strand job or strand " +
         generator.name + ", not in a sweep");
   }
-  const machines::MachineProfile machine = machines::load_profile(s.machine);
-  if (machine.plotter.enabled) {
+  Prepared p;
+  p.machine = machines::load_profile(s.machine);
+  if (p.machine.plotter.enabled) {
     throw InputError("machine = " + s.machine + ": a pen plotter; " + generator.name +
                      " needs a printer profile (strand machines lists them)");
   }
-  if (machine.robot.enabled || machine.rotary.enabled) {
-    throw InputError("machine = " + s.machine + " (" + machines::to_string(machine.volume.kind) +
+  if (p.machine.robot.enabled || p.machine.rotary.enabled) {
+    throw InputError("machine = " + s.machine + " (" + machines::to_string(p.machine.volume.kind) +
                      "): prints on a cylinder; give --substrate cylinder --substrate-radius MM "
                      "--substrate-length MM");
   }
   const nlohmann::json values = slicer::resolve_params(generator.table(), params);
-  const slicer::Toolpath t = generator.generate(values);
-  post::Produced produced = post::produce(t, machine, post::plan_options_from(t, s.arc_tolerance_mm),
+  p.toolpath = generator.generate(values);
+  p.options = post::plan_options_from(p.toolpath, s.arc_tolerance_mm);
+  return p;
+}
+
+}  // namespace
+
+post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
+                           const JobSettings& s) {
+  Prepared p = prepare(generator, params, s);
+  post::Produced produced = post::produce(std::move(p.toolpath), p.machine, p.options,
                                           job_output_path(generator, s), s.viewer_e);
-  vet_produced(produced, machine, s.arc_tolerance_mm);
+  vet_produced(produced, p.machine, s.arc_tolerance_mm);
   return produced;
 }
 
@@ -150,11 +169,23 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& s) {
   if (!s.substrate.empty()) return run_curved_job(generator, params, s);
-  post::Produced produced = produce_job(generator, params, s);
   slicer::OutputFiles out;
   for (const std::string& input : s.inputs) out.protect_input(input);
-  out.stage(job_output_path(generator, s), produced.gcode);
-  if (s.viewer_e) out.stage(viewer_output_path(job_output_path(generator, s)), produced.viewer_gcode);
+  const std::string path = job_output_path(generator, s);
+#ifndef NDEBUG
+  // Debug builds check the whole text of every file they write (produce_job).
+  post::Produced produced = produce_job(generator, params, s);
+  out.stage(path, produced.gcode);
+  if (s.viewer_e) out.stage(viewer_output_path(path), produced.viewer_gcode);
+#else
+  // The G-code streams into its temp file as it is formatted: a large job never holds it.
+  Prepared p = prepare(generator, params, s);
+  std::ostream& gcode = out.stage_stream(path);
+  std::ostream* viewer = s.viewer_e ? &out.stage_stream(viewer_output_path(path)) : nullptr;
+  post::Produced produced = post::produce(std::move(p.toolpath), p.machine, p.options, path,
+                                          s.viewer_e, {&gcode, viewer});
+  vet_produced(produced, p.machine, s.arc_tolerance_mm);  // the text is streamed: chords only
+#endif
   if (!s.report.empty()) out.stage(s.report, slicer::dump_json(produced.report) + "\n");
   out.commit();
   return produced;

@@ -54,8 +54,9 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 std::string viewer_output_path(const std::string& gcode_path);
 
 // produce_job, then writes the G-code, viewer copy and report as one transaction (all or
-// none); returns what was produced. A job with a substrate runs as a curved job
-// (curved_job.h) and returns its report and summary.
+// none); in release builds the G-code streams into its temp file as it is formatted
+// (Produced::gcode stays empty). Returns what was produced. A job with a substrate runs as a
+// curved job (curved_job.h) and returns its report and summary.
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& settings);
 

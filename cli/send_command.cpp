@@ -53,7 +53,7 @@ std::map<int, double> time_left_after(const std::string& text) {
   for (std::size_t i = 0; i < parsed.program.moves.size(); ++i) {
     const auto& mv = parsed.program.moves[i];
     double t = 0.0;
-    if (mv.kind == slicer::MoveKind::Dwell) t = mv.dwell_s;
+    if (mv.kind == slicer::MoveKind::Dwell) t = slicer::dwell_seconds(parsed.program, mv);
     if (mv.kind == slicer::MoveKind::Travel || mv.kind == slicer::MoveKind::Deposit) {
       if (mv.feed_mm_per_min > 0) t = (mv.end_mm - at).norm() / (mv.feed_mm_per_min / 60.0);
       at = mv.end_mm;

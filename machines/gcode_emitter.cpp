@@ -2,6 +2,8 @@
 #include "machines/gcode_emitter.h"
 
 #include <cmath>
+#include <cstring>
+#include <ostream>
 
 #include "machines/gcode_format.h"
 #include "machines/move_split.h"
@@ -39,16 +41,29 @@ constexpr double kWrittenResolutionMm = 1e-3;
 // the start radius and ends on the target, so this is the deviation it leaves), mm.
 constexpr double kArcRadiusMismatchMm = 2e-3;
 
-// Emission state: what the firmware has been told so far.
+// Text is formatted into a buffer handed to the stream in blocks of about this size, bytes.
+constexpr std::size_t kFlushBytes = 1 << 16;
+
+// One number as written (fixed_chars), compared as text to drop repeated words.
+struct Word {
+  char text[kFixedCharsMax];
+  std::size_t size = 0;
+  std::string_view view() const { return {text, size}; }
+  bool operator==(const Word& o) const { return view() == o.view(); }
+};
+
+// Emission state: what the firmware has been told so far. Text accumulates in `out`; with a
+// sink, full blocks are written there as they fill (nothing of the file is kept).
 class Writer {
  public:
-  Writer(const MachineProfile& m, const EmitOptions& o) : m_(m), o_(o) {
+  Writer(const MachineProfile& m, const EmitOptions& o, std::string& out, std::ostream* sink)
+      : m_(m), o_(o), out_(out), sink_(sink) {
     const auto model = m.deposition.model;
     e_words_ = model == DepositionModel::EVolumetric || o.viewer_e;
     relative_e_ = o.viewer_e || m.deposition.relative_e;
   }
 
-  std::string run(const slicer::MotionProgram& p) {
+  void run(const slicer::MotionProgram& p) {
     if (o_.viewer_e) {
       out_ += comment("PREVIEW ONLY - NOT FOR PRINTING: E words are computed ink volume (mm3, relative) for viewers");
     }
@@ -56,15 +71,23 @@ class Writer {
     for (const auto& line : m_.start_gcode) out_ += expand(line, m_) + "\n";
     preamble();
     at_ = p.start_mm;
-    for (const auto& mv : p.moves) write(mv, p);
+    for (const auto& mv : p.moves) {
+      write(mv, p);
+      if (sink_ && out_.size() >= kFlushBytes) flush();
+    }
     close_flow();
     out_ += ";TYPE:Custom\n";
     if (o_.viewer_e) out_ += comment("PREVIEW ONLY - NOT FOR PRINTING");
     for (const auto& line : m_.end_gcode) out_ += expand(line, m_) + "\n";
-    return out_;
+    if (sink_) flush();
   }
 
  private:
+  void flush() {
+    sink_->write(out_.data(), static_cast<std::streamsize>(out_.size()));
+    out_.clear();
+  }
+
   // "; text" or, on GRBL, "(text)" (GRBL comments may not nest parentheses).
   std::string comment(const std::string& text) const {
     if (m_.firmware != Firmware::Grbl) return text.empty() ? ";\n" : "; " + comment_text(text) + "\n";
@@ -108,15 +131,22 @@ class Writer {
   void e_only(double de, const std::string& note) {
     const double max = m_.deposition.extrude_max_length;
     const int n = std::max(1, static_cast<int>(std::ceil(std::abs(de) / max - 1e-9)));
-    for (int i = 0; i < n; ++i) out_ += code("G1 E" + e_step(de / n) + " F200", note);
+    for (int i = 0; i < n; ++i) {
+      out_ += "G1 E";
+      e_step(de / n);
+      out_ += code(" F200", note);
+    }
     feed_ = "200";
   }
 
   void write(const Move& mv, const slicer::MotionProgram& p) {
     if (mv.layer >= 0 && mv.layer != layer_) layer_change(mv.layer, p);
     switch (mv.kind) {
-      case MoveKind::Raw: out_ += mv.text + "\n"; break;
-      case MoveKind::Dwell: dwell(mv.dwell_s); break;
+      case MoveKind::Raw:
+        out_ += slicer::raw_text(p, mv);
+        out_ += '\n';
+        break;
+      case MoveKind::Dwell: dwell(slicer::dwell_seconds(p, mv)); break;
       case MoveKind::Travel: travel(mv); break;
       case MoveKind::Deposit: deposit(mv); break;
     }
@@ -138,9 +168,15 @@ class Writer {
     }
   }
 
-  // Moves this deposit is written as: arcs become chords where the firmware has no G2/G3,
-  // and E-driven moves are cut below EXTRUDE_MAXLENGTH.
-  std::vector<Move> pieces(const Move& mv) const {
+  struct PiecePlan {
+    int n = 1;            // pieces the deposit is written as
+    bool chords = false;  // an arc written as G1 chords
+  };
+
+  // Moves this deposit is written as: arcs become chords where the firmware has no G2/G3
+  // (or would misdraw the rounded numbers), and E-driven moves are cut below
+  // EXTRUDE_MAXLENGTH.
+  PiecePlan piece_plan(const Move& mv) const {
     int n = 1;
     const bool chords = mv.is_arc && (!m_.arcs || !arc_writable(mv));
     if (chords) {
@@ -153,6 +189,10 @@ class Writer {
       const double e = mv.volume_mm3 / m_.deposition.mm3_per_e;
       n = std::max(n, static_cast<int>(std::ceil(e / m_.deposition.extrude_max_length - 1e-9)));
     }
+    return {n, chords};
+  }
+
+  std::vector<Move> pieces(const Move& mv, int n, bool chords) const {
     if (n == 1) {
       Move line = mv;
       line.is_arc = mv.is_arc && !chords;
@@ -186,7 +226,10 @@ class Writer {
 
   void travel(const Move& mv) {
     close_flow();
-    out_ += "G0" + axes(mv) + feed(mv.feed_mm_per_min) + "\n";
+    out_ += "G0";
+    axes(mv);
+    feed(mv.feed_mm_per_min);
+    out_ += '\n';
   }
 
   void deposit(const Move& whole) {
@@ -195,7 +238,12 @@ class Writer {
     } else {
       open_flow();
     }
-    for (const Move& mv : pieces(whole)) deposit_piece(mv);
+    const PiecePlan plan = piece_plan(whole);
+    if (plan.n == 1 && !plan.chords) {
+      deposit_piece(whole);
+      return;
+    }
+    for (const Move& mv : pieces(whole, plan.n, plan.chords)) deposit_piece(mv);
   }
 
   void deposit_piece(const Move& mv) {
@@ -208,41 +256,67 @@ class Writer {
       out_ += ";WIDTH:" + fmt_xyz(mv.width_mm) + "\n";
       width_ = mv.width_mm;
     }
-    std::string line = mv.is_arc ? (mv.ccw ? "G3" : "G2") : "G1";
+    out_ += mv.is_arc ? (mv.ccw ? "G3" : "G2") : "G1";
     const Eigen::Vector2d start(at_.x(), at_.y());
-    line += axes(mv);
+    axes(mv);
     if (mv.is_arc) {
-      line += " I" + fmt_xyz(mv.center_mm.x() - start.x()) + " J" + fmt_xyz(mv.center_mm.y() - start.y());
+      number(" I", mv.center_mm.x() - start.x(), 3);
+      number(" J", mv.center_mm.y() - start.y(), 3);
     }
-    if (e_words_) line += " E" + e_word(mv.volume_mm3);
-    line += feed(mv.feed_mm_per_min);
-    out_ += line + "\n";
+    if (e_words_) {
+      out_ += " E";
+      e_word(mv.volume_mm3);
+    }
+    feed(mv.feed_mm_per_min);
+    out_ += '\n';
   }
 
-  std::string e_word(double volume_mm3) {
+  // Appends `prefix` and the number with `decimals` digits.
+  void number(const char* prefix, double v, int decimals) {
+    char buf[kFixedCharsMax];
+    out_ += prefix;
+    out_.append(buf, fixed_chars(buf, v, decimals));
+  }
+
+  void e_word(double volume_mm3) {
     const double mm3_per_e = o_.viewer_e && m_.deposition.model != DepositionModel::EVolumetric
                                  ? 1.0
                                  : m_.deposition.mm3_per_e;
-    return e_step(volume_mm3 / mm3_per_e);
+    e_step(volume_mm3 / mm3_per_e);
   }
 
-  std::string axes(const Move& mv) {
-    std::string s;
-    const char* names[3] = {" X", " Y", " Z"};
+  // Axis words that changed (X and Y always on arcs), 3 decimals. A value equal to the last
+  // one needs no formatting to know its text is the same.
+  void axes(const Move& mv) {
+    static constexpr const char* kNames[3] = {" X", " Y", " Z"};
     for (int i = 0; i < 3; ++i) {
-      const std::string v = fmt_xyz(mv.end_mm[i]);
-      if (v != last_[i] || (mv.is_arc && i < 2)) s += names[i] + v;
-      last_[i] = v;
+      if (mv.end_mm[i] == last_value_[i] && last_[i].size > 0) {
+        if (mv.is_arc && i < 2) {
+          out_ += kNames[i];
+          out_ += last_[i].view();
+        }
+        continue;
+      }
+      last_value_[i] = mv.end_mm[i];
+      Word v;
+      v.size = fixed_chars(v.text, mv.end_mm[i], 3);
+      if (!(v == last_[i]) || (mv.is_arc && i < 2)) {
+        out_ += kNames[i];
+        out_ += v.view();
+      }
+      if (!(v == last_[i])) std::memcpy(last_[i].text, v.text, (last_[i].size = v.size));
     }
     at_ = mv.end_mm;
-    return s;
   }
 
-  std::string feed(double f) {
-    const std::string v = fmt_feed(f);
-    if (v == feed_) return "";
-    feed_ = v;
-    return " F" + v;
+  // " F<feed>" when it differs from the last feed written.
+  void feed(double f) {
+    Word v;
+    v.size = fixed_chars(v.text, f, 0);
+    if (v.view() == feed_) return;
+    feed_.assign(v.view());
+    out_ += " F";
+    out_ += feed_;
   }
 
   void open_flow() {
@@ -271,16 +345,17 @@ class Writer {
     for (const auto& l : m_.deposition.off_gcode) out_ += l + "\n";
   }
 
-  // An E-only move of `de` units in the current E mode.
-  std::string e_step(double de) {
-    if (relative_e_) return fmt_e(de);
-    e_ += de;
-    return fmt_e(e_);
+  // Appends the E value of a move of `de` units in the current E mode.
+  void e_step(double de) {
+    char buf[kFixedCharsMax];
+    if (!relative_e_) e_ += de;
+    out_.append(buf, fixed_chars(buf, relative_e_ ? de : e_, 5));
   }
 
   const MachineProfile& m_;
   const EmitOptions& o_;
-  std::string out_;
+  std::string& out_;
+  std::ostream* sink_;
   bool e_words_ = false;
   bool relative_e_ = false;
   double e_ = 0.0;
@@ -290,7 +365,8 @@ class Writer {
   Feature feature_ = Feature::Infill;
   bool feature_written_ = false;
   double width_ = -1.0;
-  std::string last_[3];
+  Word last_[3];
+  double last_value_[3] = {0.0, 0.0, 0.0};  // the value last_ was formatted from
   std::string feed_;
   slicer::Vec3 at_ = slicer::Vec3::Zero();
 };
@@ -313,7 +389,16 @@ std::string viewer_role(Feature f) {
 
 std::string emit_gcode(const slicer::MotionProgram& program, const MachineProfile& machine,
                        const EmitOptions& options) {
-  return Writer(machine, options).run(program);
+  std::string out;
+  Writer(machine, options, out, nullptr).run(program);
+  return out;
+}
+
+void emit_gcode(const slicer::MotionProgram& program, const MachineProfile& machine,
+                const EmitOptions& options, std::ostream& out) {
+  std::string buffer;
+  buffer.reserve(kFlushBytes + 4096);
+  Writer(machine, options, buffer, &out).run(program);
 }
 
 }  // namespace strand::machines

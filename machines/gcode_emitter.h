@@ -2,6 +2,7 @@
 // deposition model). The only place that knows G-code words.
 #pragma once
 
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,10 @@ struct EmitOptions {
 
 std::string emit_gcode(const slicer::MotionProgram& program, const MachineProfile& machine,
                        const EmitOptions& options);
+// The same text written to `out` in blocks as it is formatted: the whole file never sits in
+// memory (large jobs stream into the temporary output file).
+void emit_gcode(const slicer::MotionProgram& program, const MachineProfile& machine,
+                const EmitOptions& options, std::ostream& out);
 
 // PrusaSlicer's viewer knows only its own role names in ;TYPE:; this maps ours onto them.
 std::string viewer_role(slicer::Feature f);

@@ -2,11 +2,19 @@
 // One formatter so output is byte-identical for identical input.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace strand::machines {
 
-// Fixed-point text with `decimals` digits; never prints "-0.000".
+// Room fixed_chars needs: sign, 15 integer digits, point, 9 decimals, or the long form of
+// huge and non-finite values.
+inline constexpr std::size_t kFixedCharsMax = 352;
+
+// Writes fixed-point text with `decimals` digits into `out` (at least kFixedCharsMax chars),
+// returns the length; never writes "-0.000". No allocation: the emitters' hot path.
+std::size_t fixed_chars(char* out, double v, int decimals);
+// The same text as a string.
 std::string fmt_fixed(double v, int decimals);
 inline std::string fmt_xyz(double mm) { return fmt_fixed(mm, 3); }
 inline std::string fmt_e(double e) { return fmt_fixed(e, 5); }

@@ -159,8 +159,8 @@ std::string emit_pen_gcode(const slicer::MotionProgram& program, const MachinePr
         }
         break;
       case slicer::MoveKind::Deposit: w.move(mv, true); break;
-      case slicer::MoveKind::Dwell: w.dwell(mv.dwell_s); break;
-      case slicer::MoveKind::Raw: w.line(mv.text); break;
+      case slicer::MoveKind::Dwell: w.dwell(slicer::dwell_seconds(program, mv)); break;
+      case slicer::MoveKind::Raw: w.line(slicer::raw_text(program, mv)); break;
     }
     if (mv.kind == slicer::MoveKind::Travel || mv.kind == slicer::MoveKind::Deposit) at = mv.end_mm;
   }

@@ -59,23 +59,36 @@ bool same_file(const std::string& a, const std::string& b) {
   return !ec && ca == cb;
 }
 
-void write_temp(const std::string& target, const std::string& temp, const std::string& content) {
+// Creates the temp file of `target`, registered for the signal cleanup.
+std::unique_ptr<std::ofstream> open_temp(const std::string& target, const std::string& temp) {
   std::error_code ec;
   if (fs::is_directory(target, ec)) throw InputError("output = " + target + ": is a directory");
   register_temp(temp);
-  std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-  if (!out) {
+  auto out = std::make_unique<std::ofstream>(temp, std::ios::binary | std::ios::trunc);
+  if (!*out) {
     forget_temp(temp);
     throw InputError("output = " + target + ": cannot write here (check the directory)");
   }
-  out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  return out;
+}
+
+// Flushes and closes a temp file; on a failed write removes it and throws.
+void close_temp(std::ofstream& out, const std::string& target, const std::string& temp) {
   out.flush();
-  if (!out) {
-    out.close();
+  const bool ok = static_cast<bool>(out);
+  out.close();
+  if (!ok) {
+    std::error_code ec;
     fs::remove(temp, ec);
     forget_temp(temp);
     throw InputError("output = " + target + ": write failed (disk full?)");
   }
+}
+
+void write_temp(const std::string& target, const std::string& temp, const std::string& content) {
+  auto out = open_temp(target, temp);
+  out->write(content.data(), static_cast<std::streamsize>(content.size()));
+  close_temp(*out, target, temp);
 }
 
 }  // namespace
@@ -84,6 +97,7 @@ OutputFiles::~OutputFiles() {
   if (committed_) return;
   for (const Staged& s : staged_) {
     std::error_code ec;
+    if (s.stream) s.stream->close();
     fs::remove(s.temp, ec);
     forget_temp(s.temp);
   }
@@ -91,7 +105,7 @@ OutputFiles::~OutputFiles() {
 
 void OutputFiles::protect_input(const std::string& path) { protected_.push_back(path); }
 
-void OutputFiles::stage(const std::string& path, const std::string& content) {
+void OutputFiles::check_target(const std::string& path) const {
   for (const std::string& input : protected_) {
     if (same_file(path, input)) {
       throw InputError("output = " + path + ": would overwrite the input " + input +
@@ -103,12 +117,35 @@ void OutputFiles::stage(const std::string& path, const std::string& content) {
       throw InputError("output = " + path + ": named twice among this command's outputs");
     }
   }
-  Staged s{path, path + ".strand-tmp"};
+}
+
+void OutputFiles::stage(const std::string& path, const std::string& content) {
+  check_target(path);
+  Staged s{path, path + ".strand-tmp", nullptr};
   write_temp(s.target, s.temp, content);
   staged_.push_back(std::move(s));
 }
 
+std::ostream& OutputFiles::stage_stream(const std::string& path) {
+  check_target(path);
+  Staged s{path, path + ".strand-tmp", nullptr};
+  s.stream = open_temp(s.target, s.temp);
+  staged_.push_back(std::move(s));
+  return *staged_.back().stream;
+}
+
 void OutputFiles::commit() {
+  for (Staged& s : staged_) {
+    if (!s.stream) continue;
+    // A failed write removes that temp; the destructor removes the others.
+    auto stream = std::move(s.stream);
+    try {
+      close_temp(*stream, s.target, s.temp);
+    } catch (...) {
+      s.temp.clear();
+      throw;
+    }
+  }
   for (std::size_t i = 0; i < staged_.size(); ++i) {
     std::error_code ec;
     fs::rename(staged_[i].temp, staged_[i].target, ec);

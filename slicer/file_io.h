@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstddef>
+#include <fstream>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,12 +30,18 @@ class OutputFiles {
   // own report). Missing files are fine.
   void protect_input(const std::string& path);
   void stage(const std::string& path, const std::string& content);
+  // Stages `path` to be written in pieces (large G-code streams into it as it is formatted,
+  // so the whole file never sits in memory): returns the temp file's stream, valid until
+  // commit(), which flushes it and throws InputError if any write failed.
+  std::ostream& stage_stream(const std::string& path);
   void commit();
 
  private:
   struct Staged {
     std::string target, temp;
+    std::unique_ptr<std::ofstream> stream;  // stage_stream only
   };
+  void check_target(const std::string& path) const;
   std::vector<Staged> staged_;
   std::vector<std::string> protected_;
   bool committed_ = false;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -11,7 +12,7 @@
 namespace strand::slicer {
 
 // What a piece of deposit is for; drives speed factors and viewer colours.
-enum class Feature {
+enum class Feature : std::uint8_t {
   Infill,    // log-pile filament, hatching
   Wall,      // outline of a solid region
   Ligament,  // straight rib of a lattice

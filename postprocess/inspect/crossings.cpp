@@ -1,7 +1,10 @@
-// Per-layer contact search on a uniform grid: each segment is rasterised into the cells its
-// touch-inflated body crosses (not its bounding box), so the work is linear in the total
-// length over the cell size plus the pairs that really share a cell.
+// Per-layer contact search: CGAL's box_self_intersection_d on the touch-inflated bounding
+// boxes of the segments reports the k pairs whose boxes overlap in O(n log^2 n + k),
+// whatever the segment lengths (a uniform grid goes quadratic on a serpentine of long
+// rows); each candidate pair is then classified exactly.
 #include "postprocess/inspect/crossings.h"
+
+#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <cmath>
@@ -67,66 +70,6 @@ bool adjacent(const Seg& s, const Seg& t) {
   return s.strand == t.strand && std::abs(s.index - t.index) == 1;
 }
 
-// A grid over one layer's bounding box, cell size about one mean segment length.
-struct Grid {
-  Vec2 lo;
-  double cell;
-  std::int64_t nx;
-  std::int64_t col(double x) const {
-    return static_cast<std::int64_t>(std::floor((x - lo.x()) / cell));
-  }
-  std::int64_t row(double y) const {
-    return static_cast<std::int64_t>(std::floor((y - lo.y()) / cell));
-  }
-  std::uint64_t key(std::int64_t cx, std::int64_t cy) const {
-    return static_cast<std::uint64_t>((cy + 1) * (nx + 3) + (cx + 1));
-  }
-};
-
-Grid make_grid(const std::vector<Seg>& segs) {
-  Vec2 lo = segs[0].a, hi = segs[0].a;
-  double total = 0;
-  std::vector<double> lengths;
-  lengths.reserve(segs.size());
-  for (const auto& s : segs) {
-    lo = lo.cwiseMin(s.a).cwiseMin(s.b);
-    hi = hi.cwiseMax(s.a).cwiseMax(s.b);
-    lengths.push_back((s.b - s.a).norm());
-    total += lengths.back();
-  }
-  const auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
-  std::nth_element(lengths.begin(), mid, lengths.end());
-  const double n = static_cast<double>(segs.size());
-  const Vec2 ext = (hi - lo).cwiseMax(Vec2(1e-9, 1e-9));
-  // Cells about one median segment long (a few long lines do not inflate the cells of a
-  // dense node), but at most ~8n cells crossed in total, at most ~4n cells in the box, and
-  // at most 2^20 cells along an axis (keys fit 64 bits for any coordinates).
-  const double cell = std::max({*mid, total / (8 * n), std::sqrt(ext.x() * ext.y() / (4 * n)),
-                                ext.maxCoeff() / double(1 << 20), 1e-6});
-  return {lo, cell, static_cast<std::int64_t>(ext.x() / cell) + 1};
-}
-
-// Appends (cell key, segment) for every cell the segment, inflated by `pad`, may touch:
-// column by column, the y-range the segment covers inside that column's slab.
-void rasterise(const Grid& g, const Seg& s, std::uint32_t id, double pad,
-               std::vector<std::pair<std::uint64_t, std::uint32_t>>& out) {
-  const Vec2 p = s.a.x() <= s.b.x() ? s.a : s.b;
-  const Vec2 q = s.a.x() <= s.b.x() ? s.b : s.a;
-  const double dx = q.x() - p.x();
-  const std::int64_t c0 = g.col(p.x() - pad), c1 = g.col(q.x() + pad);
-  for (std::int64_t cx = c0; cx <= c1; ++cx) {
-    const double x_lo = std::max(p.x(), g.lo.x() + static_cast<double>(cx) * g.cell - pad);
-    const double x_hi = std::min(q.x(), g.lo.x() + static_cast<double>(cx + 1) * g.cell + pad);
-    auto y_at = [&](double x) {
-      return dx <= 0 ? p.y() : p.y() + (q.y() - p.y()) * (x - p.x()) / dx;
-    };
-    const double y_lo = dx <= 0 ? std::min(p.y(), q.y()) : std::min(y_at(x_lo), y_at(x_hi));
-    const double y_hi = dx <= 0 ? std::max(p.y(), q.y()) : std::max(y_at(x_lo), y_at(x_hi));
-    for (std::int64_t cy = g.row(y_lo - pad); cy <= g.row(y_hi + pad); ++cy)
-      out.emplace_back(g.key(cx, cy), id);
-  }
-}
-
 struct Found {
   std::uint32_t i, j;
   slicer::Contact kind;
@@ -134,7 +77,7 @@ struct Found {
   bool operator==(const Found& o) const { return i == o.i && j == o.j; }
 };
 
-// Classifies one candidate pair; pairs sharing several cells are deduplicated later.
+// Classifies one candidate pair.
 void test_pair(const std::vector<Seg>& segs, std::uint32_t i, std::uint32_t j, double touch,
                std::vector<Found>& found) {
   const Seg& s = segs[i];
@@ -159,24 +102,28 @@ Vec2 touch_point(const Seg& s, const Seg& t, double touch) {
   return slicer::point_segment_distance(s.a, t.a, t.b) <= touch ? s.a : s.b;
 }
 
+// A segment's bounding box grown by `pad` on every side; its handle is the segment itself.
+using SegBox = CGAL::Box_intersection_d::Box_with_handle_d<double, 2, const Seg*>;
+
+SegBox box_of(const Seg& s, double pad) {
+  double lo[2] = {std::min(s.a.x(), s.b.x()) - pad, std::min(s.a.y(), s.b.y()) - pad};
+  double hi[2] = {std::max(s.a.x(), s.b.x()) + pad, std::max(s.a.y(), s.b.y()) + pad};
+  return SegBox(lo, hi, &s);
+}
+
 void check_layer(const LayerSegs& L, double touch, ContactReport& out) {
   const auto& segs = L.segs;
   if (segs.size() < 2) return;
-  const Grid g = make_grid(segs);
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> cells;
-  cells.reserve(segs.size() * 3);
-  for (std::uint32_t k = 0; k < segs.size(); ++k) rasterise(g, segs[k], k, touch, cells);
-  std::sort(cells.begin(), cells.end());
+  // Boxes grown by the whole touch distance: a superset of the pairs test_pair accepts.
+  std::vector<SegBox> boxes;
+  boxes.reserve(segs.size());
+  for (const Seg& s : segs) boxes.push_back(box_of(s, touch));
   std::vector<Found> found;
-  for (std::size_t b = 0; b < cells.size();) {
-    std::size_t e = b + 1;
-    while (e < cells.size() && cells[e].first == cells[b].first) ++e;
-    for (std::size_t i = b; i < e; ++i) {
-      for (std::size_t j = i + 1; j < e; ++j)
-        test_pair(segs, cells[i].second, cells[j].second, touch, found);
-    }
-    b = e;
-  }
+  const Seg* const base = segs.data();
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const SegBox& p, const SegBox& q) {
+    test_pair(segs, static_cast<std::uint32_t>(p.handle() - base),
+              static_cast<std::uint32_t>(q.handle() - base), touch, found);
+  });
   std::sort(found.begin(), found.end());
   found.erase(std::unique(found.begin(), found.end()), found.end());
   for (const Found& f : found) {

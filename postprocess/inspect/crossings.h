@@ -1,6 +1,6 @@
 // Contacts between deposited segments inside each layer: proper crossings (a filament
 // over itself, which grows a bump layer after layer) and touches (end on a filament,
-// collinear overlap). A uniform grid keeps it O(n) for evenly spread segments.
+// collinear overlap). O(n log^2 n + k) per layer for n segments and k box overlaps.
 #pragma once
 
 #include <vector>

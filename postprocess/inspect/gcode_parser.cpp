@@ -221,13 +221,10 @@ class Reader {
   }
 
   void dwell(const Words& w, int n) {
-    Move mv;
-    mv.kind = MoveKind::Dwell;
-    mv.end_mm = pos_;
-    if (auto s = w.get('S')) mv.dwell_s = *s;
-    if (auto p = w.get('P')) mv.dwell_s = *p / 1000.0;
-    mv.layer = layer_;
-    out_.program.moves.push_back(mv);
+    double seconds = 0.0;
+    if (auto s = w.get('S')) seconds = *s;
+    if (auto p = w.get('P')) seconds = *p / 1000.0;
+    slicer::push_dwell(out_.program, seconds, pos_, layer_);
     out_.move_lines.push_back(n);  // one line per move, dwells included
     if (has_a_) out_.a_deg.push_back(a_);
   }

@@ -33,8 +33,8 @@ Estimate estimate(const slicer::MotionProgram& p) {
     if (mv.layer != last_layer) depositing = false;  // a new layer starts a new strand
     last_layer = mv.layer;
     if (mv.kind == MoveKind::Dwell) {
-      e.time_naive_s += mv.dwell_s;
-      if (le) le->time_naive_s += mv.dwell_s;
+      e.time_naive_s += slicer::dwell_seconds(p, mv);
+      if (le) le->time_naive_s += slicer::dwell_seconds(p, mv);
       continue;
     }
     if (mv.kind == MoveKind::Raw) continue;

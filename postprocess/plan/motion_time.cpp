@@ -19,38 +19,94 @@ namespace {
 
 struct Block {
   double length_mm = 0.0;
-  double v_max = 0.0;       // nominal (cruise) speed, mm/s
-  Vec3 unit = Vec3::Zero();
-  bool stop_before = false;  // the machine is at rest when the block starts
+  double v_max = 0.0;  // nominal (cruise) speed, mm/s
   int layer = -1;
-  double entry = 0.0;       // planned entry speed, mm/s
+  double entry = 0.0;  // junction limit, then the planned entry speed, mm/s
 };
 
 // Flow state a move leaves the machine in, for valve machines: 0 closed, 1 open.
 int flow_state(const Move& mv) { return mv.kind == MoveKind::Deposit && !mv.coast ? 1 : 0; }
 
-struct Collected {
-  std::vector<Block> blocks;
-  std::vector<double> dwell_by_layer;  // index layer + 1 (0 = before the first layer)
-};
-
-Collected collect(const slicer::MotionProgram& p, const TimeOptions& o) {
-  Collected c;
-  c.dwell_by_layer.assign(p.layers.size() + 1, 0.0);
-  Vec3 at = p.start_mm;
-  bool stop = true;
+// Dwell time per layer bucket (index layer + 1; 0 = before the first layer): explicit dwells
+// and the lead dwell at every strand start.
+std::vector<double> dwell_by_layer(const slicer::MotionProgram& p, const TimeOptions& o) {
+  std::vector<double> dwell(p.layers.size() + 1, 0.0);
   int flow = 0;
   for (const auto& mv : p.moves) {
     const auto bucket = static_cast<std::size_t>(std::clamp(mv.layer + 1, 0, static_cast<int>(p.layers.size())));
     if (mv.kind == MoveKind::Dwell || mv.kind == MoveKind::Raw) {
-      c.dwell_by_layer[bucket] += mv.kind == MoveKind::Dwell ? mv.dwell_s : 0.0;
+      dwell[bucket] += mv.kind == MoveKind::Dwell ? slicer::dwell_seconds(p, mv) : 0.0;
+      continue;
+    }
+    if (mv.kind == MoveKind::Deposit && !mv.coast && flow == 0) dwell[bucket] += o.strand_start_dwell_s;
+    flow = flow_state(mv);
+  }
+  return dwell;
+}
+
+// The firmware-style planner run as a stream: blocks wait in a queue until one is a cut,
+// a block whose entry speed the backward pass can no longer lower (it can stop from its
+// junction limit within its own length), so nothing after it changes anything before it.
+// The queue is then planned backward and forward and timed, exactly as one pass over the
+// whole program would, with memory bounded by the distance between cuts.
+class StreamPlanner {
+ public:
+  StreamPlanner(double accel, MotionTime& t) : a_(accel), t_(t) {}
+
+  void add(const Block& b) {
+    q_.push_back(b);
+    if (std::sqrt(2 * a_ * b.length_mm) >= b.entry) plan(false);
+  }
+  void finish() { plan(true); }  // the program ends at rest
+
+ private:
+  void plan(bool end) {
+    if (q_.empty()) return;
+    const std::size_t first = head_final_ ? 1 : 0;  // q_[0] may be final already
+    double exit = 0.0;  // exact for a cut block too: its entry ignores what follows
+    for (std::size_t k = q_.size(); k-- > first;) {
+      q_[k].entry = std::min(q_[k].entry, std::sqrt(exit * exit + 2 * a_ * q_[k].length_mm));
+      exit = q_[k].entry;
+    }
+    for (std::size_t i = std::max<std::size_t>(first, 1); i < q_.size(); ++i) {
+      const double reach = std::sqrt(q_[i - 1].entry * q_[i - 1].entry + 2 * a_ * q_[i - 1].length_mm);
+      q_[i].entry = std::min(q_[i].entry, reach);
+    }
+    const std::size_t timed = end ? q_.size() : q_.size() - 1;  // the last waits for its exit
+    for (std::size_t i = 0; i < timed; ++i) {
+      const Block& b = q_[i];
+      const double exit_speed = i + 1 < q_.size() ? q_[i + 1].entry : 0.0;
+      const double s = block_time_s(b.length_mm, b.entry, b.v_max, exit_speed, a_);
+      t_.total_s += s;
+      if (b.layer >= 0 && b.layer < static_cast<int>(t_.layer_s.size())) t_.layer_s[static_cast<std::size_t>(b.layer)] += s;
+    }
+    q_.erase(q_.begin(), q_.begin() + static_cast<std::ptrdiff_t>(timed));
+    head_final_ = !q_.empty();
+  }
+
+  double a_;
+  MotionTime& t_;
+  std::vector<Block> q_;
+  bool head_final_ = false;
+};
+
+// Cuts the program into straight blocks (arcs as chords) with their junction limits.
+void stream_blocks(const slicer::MotionProgram& p, const TimeOptions& o, StreamPlanner& planner) {
+  Vec3 at = p.start_mm;
+  bool stop = true;
+  bool any = false;  // a block was made (the first one starts at rest)
+  Vec3 prev_unit = Vec3::Zero();
+  double prev_v = 0.0;
+  int flow = 0;
+  std::vector<Vec3> points;
+  for (const auto& mv : p.moves) {
+    if (mv.kind == MoveKind::Dwell || mv.kind == MoveKind::Raw) {
       stop = true;
       continue;
     }
     if (o.stop_at_flow_change && flow_state(mv) != flow) stop = true;
-    if (mv.kind == MoveKind::Deposit && !mv.coast && flow == 0) c.dwell_by_layer[bucket] += o.strand_start_dwell_s;
     flow = flow_state(mv);
-    std::vector<Vec3> points;
+    points.clear();
     if (mv.is_arc) {
       const auto pts = segment_arc(at.head<2>(), mv.center_mm, mv.end_mm.head<2>(), mv.ccw, o.arc_tolerance_mm);
       for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -64,32 +120,19 @@ Collected collect(const slicer::MotionProgram& p, const TimeOptions& o) {
     for (const Vec3& q : points) {
       const double len = (q - at).norm();
       if (len < 1e-9 || v <= 0) continue;
-      c.blocks.push_back({len, v, (q - at) / len, stop, mv.layer});
+      const Vec3 unit = (q - at) / len;
+      double limit = 0.0;
+      if (any && !stop) {
+        limit = std::min({prev_v, v, junction_speed_mm_per_s(prev_unit, unit, o.acceleration_mm_per_s2,
+                                                             o.junction_deviation_mm)});
+      }
+      planner.add({len, v, mv.layer, limit});
+      any = true;
       stop = false;
+      prev_unit = unit;
+      prev_v = v;
       at = q;
     }
-  }
-  return c;
-}
-
-void plan_speeds(std::vector<Block>& b, const TimeOptions& o) {
-  const double a = o.acceleration_mm_per_s2;
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    double limit = 0.0;
-    if (i > 0 && !b[i].stop_before) {
-      limit = std::min({b[i - 1].v_max, b[i].v_max,
-                        junction_speed_mm_per_s(b[i - 1].unit, b[i].unit, a, o.junction_deviation_mm)});
-    }
-    b[i].entry = limit;
-  }
-  double exit = 0.0;  // the program ends at rest
-  for (std::size_t k = b.size(); k-- > 0;) {
-    b[k].entry = std::min(b[k].entry, std::sqrt(exit * exit + 2 * a * b[k].length_mm));
-    exit = b[k].entry;
-  }
-  for (std::size_t i = 1; i < b.size(); ++i) {
-    const double reach = std::sqrt(b[i - 1].entry * b[i - 1].entry + 2 * a * b[i - 1].length_mm);
-    b[i].entry = std::min(b[i].entry, reach);
   }
 }
 
@@ -125,21 +168,16 @@ double block_time_s(double length_mm, double v_in, double v_max, double v_out, d
 }
 
 MotionTime trapezoid_time(const slicer::MotionProgram& p, const TimeOptions& o) {
-  Collected c = collect(p, o);
-  plan_speeds(c.blocks, o);
   MotionTime t;
   t.layer_s.assign(p.layers.size(), 0.0);
-  for (std::size_t i = 0; i < c.dwell_by_layer.size(); ++i) {
-    t.total_s += c.dwell_by_layer[i];
-    if (i > 0) t.layer_s[i - 1] += c.dwell_by_layer[i];
+  const std::vector<double> dwell = dwell_by_layer(p, o);
+  for (std::size_t i = 0; i < dwell.size(); ++i) {
+    t.total_s += dwell[i];
+    if (i > 0) t.layer_s[i - 1] += dwell[i];
   }
-  for (std::size_t i = 0; i < c.blocks.size(); ++i) {
-    const Block& b = c.blocks[i];
-    const double exit = i + 1 < c.blocks.size() ? c.blocks[i + 1].entry : 0.0;
-    const double s = block_time_s(b.length_mm, b.entry, b.v_max, exit, o.acceleration_mm_per_s2);
-    t.total_s += s;
-    if (b.layer >= 0 && b.layer < static_cast<int>(t.layer_s.size())) t.layer_s[static_cast<std::size_t>(b.layer)] += s;
-  }
+  StreamPlanner planner(o.acceleration_mm_per_s2, t);
+  stream_blocks(p, o, planner);
+  planner.finish();
   return t;
 }
 

@@ -7,6 +7,7 @@
 #include "postprocess/plan/arc_segmentation.h"
 #include "postprocess/plan/placement.h"
 #include "postprocess/plan/valve_lag.h"
+#include "slicer/memory.h"
 #include "slicer/units.h"
 #include "slicer/tolerances.h"
 
@@ -20,22 +21,56 @@ using slicer::Vec3;
 
 namespace {
 
+// Freed toolpath layers go back to the OS every this many layers (slicer/memory.h).
+constexpr std::size_t kTrimEveryLayers = 64;
+
 class Planner {
  public:
   Planner(const machines::MachineProfile& m, const PlanOptions& o) : m_(m), o_(o) {}
 
-  slicer::MotionProgram run(const slicer::Toolpath& t) {
+  // With `release` (the same layers as t's), each layer's strokes are freed once planned.
+  slicer::MotionProgram run(const slicer::Toolpath& t, std::vector<slicer::Layer>* release) {
     offset_ = m_.volume.part_center_mm;
+    p_.moves.reserve(move_bound(t));
+    p_.layers.reserve(t.layers.size());
     for (std::size_t li = 0; li < t.layers.size(); ++li) {
       const auto& layer = t.layers[li];
       p_.layers.push_back({layer.z_mm, layer.height_mm});
       layer_ = static_cast<int>(li);
       for (const auto& stroke : layer.strokes) add_stroke(stroke, layer.z_mm);
+      if (release) {
+        std::vector<slicer::Stroke>().swap((*release)[li].strokes);
+        if (li % kTrimEveryLayers == kTrimEveryLayers - 1) slicer::release_free_memory();
+      }
     }
     return std::move(p_);
   }
 
  private:
+  // Moves run() can make at most (travels skipped when already in place), so the program is
+  // allocated once: a growing vector would briefly hold two or three times its size.
+  std::size_t move_bound(const slicer::Toolpath& t) const {
+    std::size_t n = 1;  // the approach above the first point
+    for (const auto& layer : t.layers) {
+      for (const auto& s : layer.strokes) {
+        n += 3;  // lift, cross, lower
+        Vec2 at = s.start_mm;
+        for (const auto& seg : s.segments) {
+          if (seg.kind == slicer::SegmentKind::Line || m_.arcs) {
+            ++n;
+          } else {
+            const double r = (at - seg.center_mm).norm();
+            // + 1: planning works on placed coordinates, whose rounding may add a chord.
+            n += 1 + static_cast<std::size_t>(chords_needed(
+                         r, slicer::arc_sweep(seg.center_mm, at, seg.end_mm, seg.ccw), o_.arc_tolerance_mm));
+          }
+          at = seg.end_mm;
+        }
+      }
+    }
+    return n;
+  }
+
   void add_stroke(const slicer::Stroke& s, double z) {
     const Vec3 start(s.start_mm.x() + offset_.x(), s.start_mm.y() + offset_.y(), z);
     travel_to(start);
@@ -86,7 +121,17 @@ class Planner {
 
   // Base speed x feature factor (job first, then profile), capped by the machine's feed
   // and, on E-driven machines, by its volumetric flow over the bead section.
-  double feed_for(Feature f, double area_mm2) const {
+  double feed_for(Feature f, double area_mm2) {
+    // Consecutive segments nearly always share feature and bead: skip the table lookups.
+    if (cached_ && f == cached_feature_ && area_mm2 == cached_area_) return cached_feed_;
+    cached_ = true;
+    cached_feature_ = f;
+    cached_area_ = area_mm2;
+    cached_feed_ = feed_uncached(f, area_mm2);
+    return cached_feed_;
+  }
+
+  double feed_uncached(Feature f, double area_mm2) const {
     double factor = 1.0;
     if (auto it = o_.speed_factors.find(f); it != o_.speed_factors.end()) {
       factor = it->second;
@@ -139,6 +184,10 @@ class Planner {
   Vec3 pos_ = Vec3::Zero();
   bool started_ = false;
   int layer_ = -1;
+  bool cached_ = false;
+  Feature cached_feature_ = Feature::Infill;
+  double cached_area_ = 0.0;
+  double cached_feed_ = 0.0;
 };
 
 }  // namespace
@@ -155,14 +204,28 @@ PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm
   return o;
 }
 
-slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachineProfile& machine,
-                           const PlanOptions& options) {
-  slicer::MotionProgram p = Planner(machine, options).run(t);
+namespace {
+
+slicer::MotionProgram plan_layers(const slicer::Toolpath& t, const machines::MachineProfile& machine,
+                                  const PlanOptions& options, std::vector<slicer::Layer>* release) {
+  slicer::MotionProgram p = Planner(machine, options).run(t, release);
   if (machine.deposition.model == machines::DepositionModel::Valve && machine.deposition.lag_s > 0) {
     apply_valve_lag(p, machine.deposition.lag_s);
   }
   check_fits(p, machine);
   return p;
+}
+
+}  // namespace
+
+slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachineProfile& machine,
+                           const PlanOptions& options) {
+  return plan_layers(t, machine, options, nullptr);
+}
+
+slicer::MotionProgram plan_and_release(slicer::Toolpath& t, const machines::MachineProfile& machine,
+                                       const PlanOptions& options) {
+  return plan_layers(t, machine, options, &t.layers);
 }
 
 }  // namespace strand::post

@@ -46,14 +46,17 @@ std::vector<std::string> header(const slicer::Toolpath& t, const machines::Machi
 
 }  // namespace
 
-Produced produce(const slicer::Toolpath& t, const machines::MachineProfile& m,
-                 const PlanOptions& options, const std::string& gcode_path, bool viewer_e) {
-  return produce_program(t, plan(t, m, options), m, options, gcode_path, viewer_e);
+Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
+                 const PlanOptions& options, const std::string& gcode_path, bool viewer_e,
+                 const GcodeStreams& streams) {
+  slicer::MotionProgram program = plan_and_release(t, m, options);
+  return produce_program(t, std::move(program), m, options, gcode_path, viewer_e, streams);
 }
 
 Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,
                          const machines::MachineProfile& m, const PlanOptions& options,
-                         const std::string& gcode_path, bool viewer_e) {
+                         const std::string& gcode_path, bool viewer_e,
+                         const GcodeStreams& streams) {
   Produced out;
   out.program = std::move(program);
   const Estimate e = estimate(out.program, m);
@@ -62,10 +65,18 @@ Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram progra
   out.summary = summary_text(out.report);
   machines::EmitOptions eo;
   eo.header = header(t, m, options, out.report);
-  out.gcode = machines::emit_gcode(out.program, m, eo);
+  if (streams.gcode) {
+    machines::emit_gcode(out.program, m, eo, *streams.gcode);
+  } else {
+    out.gcode = machines::emit_gcode(out.program, m, eo);
+  }
   if (viewer_e) {
     eo.viewer_e = true;
-    out.viewer_gcode = machines::emit_gcode(out.program, m, eo);
+    if (streams.viewer_gcode) {
+      machines::emit_gcode(out.program, m, eo, *streams.viewer_gcode);
+    } else {
+      out.viewer_gcode = machines::emit_gcode(out.program, m, eo);
+    }
   }
   return out;
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
 
 #include "machines/profile.h"
@@ -12,21 +13,31 @@
 namespace strand::post {
 
 struct Produced {
-  std::string gcode;
+  std::string gcode;         // empty when streamed (GcodeStreams)
   std::string viewer_gcode;  // preview-only copy with computed E; empty unless asked for
   nlohmann::json report;
   std::string summary;
   slicer::MotionProgram program;
 };
 
+// Where the G-code goes instead of Produced's strings: written in blocks as it is formatted,
+// so a large job never holds its whole file in memory.
+struct GcodeStreams {
+  std::ostream* gcode = nullptr;
+  std::ostream* viewer_gcode = nullptr;  // used with viewer_e
+};
+
 // `gcode_path` is only recorded in the report. Throws InputError if the part does not fit.
 // With `viewer_e`, also writes the preview-only variant (machines::EmitOptions::viewer_e).
-Produced produce(const slicer::Toolpath& t, const machines::MachineProfile& m,
+// The toolpath is taken by value and released layer by layer as it is planned (pass it with
+// std::move so a large job does not hold toolpath and program at once).
+Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
                  const PlanOptions& options, const std::string& gcode_path,
-                 bool viewer_e = false);
+                 bool viewer_e = false, const GcodeStreams& streams = {});
 // The same from an already planned program (conformal printing plans through a surface).
 Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,
                          const machines::MachineProfile& m, const PlanOptions& options,
-                         const std::string& gcode_path, bool viewer_e = false);
+                         const std::string& gcode_path, bool viewer_e = false,
+                         const GcodeStreams& streams = {});
 
 }  // namespace strand::post

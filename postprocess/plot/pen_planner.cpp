@@ -8,6 +8,7 @@
 #include "machines/plotter_kinematics.h"
 #include "postprocess/plot/plot_layout.h"
 #include "slicer/input_error.h"
+#include "slicer/memory.h"
 #include "slicer/params.h"
 
 namespace strand::post {
@@ -39,6 +40,16 @@ class PenProgram {
 
   slicer::MotionProgram& program() { return p_; }
 
+  // Room for the moves of `strokes` when no draw move needs splitting (travel, pen down and
+  // dwell, one move per segment, pen up and dwell; the way home), so the program is allocated
+  // once instead of growing past twice its size.
+  void reserve(const std::vector<slicer::Stroke>& strokes) {
+    std::size_t n = 1;
+    for (const auto& s : strokes) n += 5 + s.segments.size();
+    p_.moves.reserve(n);
+    p_.dwells_s.reserve(2 * strokes.size());
+  }
+
   void start(const Vec2& home) {
     p_.layers.push_back({0.0, 0.0});
     p_.start_mm = Vec3(home.x(), home.y(), machines::kPenUpZ);
@@ -52,13 +63,7 @@ class PenProgram {
     push(MoveKind::Travel, Vec3(at_.x(), at_.y(), down ? machines::kPenDownZ : machines::kPenUpZ),
          m_.limits.z_feed_mm_per_min, tool);
     if (m_.plotter.pen.lift == machines::PenLift::Servo && m_.plotter.pen.dwell_s > 0) {
-      Move d;
-      d.kind = MoveKind::Dwell;
-      d.end_mm = at_;
-      d.dwell_s = m_.plotter.pen.dwell_s;
-      d.tool = tool;
-      d.layer = 0;
-      p_.moves.push_back(d);
+      slicer::push_dwell(p_, m_.plotter.pen.dwell_s, at_, 0).tool = static_cast<std::int16_t>(tool);
     }
   }
   void draw(const Vec2& to, int tool, double width_mm) {
@@ -104,7 +109,10 @@ slicer::MotionProgram plan_pen(const slicer::Toolpath& t, const machines::Machin
                      " (mm) on " + m.name + " (its step size and 3-decimal axes already cost " +
                      slicer::short_number(std::round(rounding * 1e5) / 1e5) + " mm)");
   }
+  // Stroke copies freed by merging and ordering go back to the OS before the program grows.
+  slicer::release_free_memory();
   PenProgram p(m, bow);
+  p.reserve(t.layers[0].strokes);
   const Vec2 home = m.plotter.setup.home_mm;
   p.start(home);
   const auto& pen = m.plotter.pen;
@@ -115,15 +123,13 @@ slicer::MotionProgram plan_pen(const slicer::Toolpath& t, const machines::Machin
     double& used = drawn[static_cast<std::size_t>(s.tool)];
     if (pen.capacity_mm > 0 && pen.pause_on_empty && !pen.change_gcode.empty() &&
         std::floor((used + len) / pen.capacity_mm) > std::floor(used / pen.capacity_mm)) {
-      Move change;
-      change.kind = MoveKind::Raw;
-      change.layer = 0;
+      std::string change;
       for (std::string line : pen.change_gcode) {
         const auto at = line.find("{pen}");
         if (at != std::string::npos) line.replace(at, 5, std::to_string(s.tool + 1));
-        change.text += (change.text.empty() ? "" : "\n") + line + " ; pen ran dry";
+        change += (change.empty() ? "" : "\n") + line + " ; pen ran dry";
       }
-      p.program().moves.push_back(change);
+      slicer::push_raw(p.program(), std::move(change), 0);
     }
     used += len;
     p.pen(true, s.tool);
@@ -131,7 +137,7 @@ slicer::MotionProgram plan_pen(const slicer::Toolpath& t, const machines::Machin
     p.pen(false, s.tool);
   }
   p.travel(home, t.layers[0].strokes.empty() ? 0 : t.layers[0].strokes.back().tool);
-  return p.program();
+  return std::move(p.program());
 }
 
 PenEstimate estimate_pen(const slicer::MotionProgram& prog, const machines::MachineProfile& m) {
@@ -141,7 +147,7 @@ PenEstimate estimate_pen(const slicer::MotionProgram& prog, const machines::Mach
   Vec3 at = prog.start_mm;
   Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
   for (const auto& mv : prog.moves) {
-    if (mv.kind == MoveKind::Dwell) e.time_s += mv.dwell_s;
+    if (mv.kind == MoveKind::Dwell) e.time_s += slicer::dwell_seconds(prog, mv);
     if (mv.kind != MoveKind::Travel && mv.kind != MoveKind::Deposit) continue;
     const double paper = (mv.end_mm.head<2>() - at.head<2>()).norm();
     const double axes = (machines::to_axes(m.plotter.setup, mv.end_mm.head<2>()) -

@@ -1,4 +1,4 @@
-// Uniform grid construction for point queries.
+// Uniform grid construction for point queries: ids bucketed by cell with a counting sort.
 #include "postprocess/plot/point_grid.h"
 
 #include <algorithm>
@@ -22,7 +22,8 @@ PointGrid::PointGrid(const std::vector<slicer::Vec2>& points)
 PointGrid::PointGrid(const std::vector<slicer::Vec2>& points, const std::vector<int>& ids)
     : points_(points) {
   if (ids.empty()) {
-    cells_.resize(1);
+    start_.assign(1, 0);
+    count_.assign(1, 0);
     return;
   }
   slicer::Vec2 hi = points[ids[0]];
@@ -36,10 +37,14 @@ PointGrid::PointGrid(const std::vector<slicer::Vec2>& points, const std::vector<
                    std::max(size.x(), size.y()) / 4096.0);
   nx_ = std::max(1, static_cast<int>(size.x() / cell_) + 1);
   ny_ = std::max(1, static_cast<int>(size.y() / cell_) + 1);
-  cells_.resize(static_cast<std::size_t>(nx_) * ny_);
-  for (int id : ids) {
-    cells_[static_cast<std::size_t>(cell_y(points[id].y())) * nx_ + cell_x(points[id].x())].push_back(id);
-  }
+  const std::size_t cells = static_cast<std::size_t>(nx_) * ny_;
+  count_.assign(cells, 0);
+  for (int id : ids) ++count_[cell_of(points[id])];
+  start_.assign(cells, 0);
+  for (std::size_t c = 1; c < cells; ++c) start_[c] = start_[c - 1] + count_[c - 1];
+  ids_.resize(ids.size());
+  std::vector<std::uint32_t> fill(start_);
+  for (int id : ids) ids_[fill[cell_of(points[id])]++] = id;
 }
 
 int PointGrid::cell_x(double x) const {
@@ -50,8 +55,15 @@ int PointGrid::cell_y(double y) const {
 }
 
 void PointGrid::forget(int id) {
-  auto& c = cells_[static_cast<std::size_t>(cell_y(points_[id].y())) * nx_ + cell_x(points_[id].x())];
-  c.erase(std::remove(c.begin(), c.end(), id), c.end());
+  const std::size_t c = cell_of(points_[id]);
+  const std::uint32_t first = start_[c], last = start_[c] + count_[c];
+  for (std::uint32_t i = first; i < last; ++i) {
+    if (ids_[i] == id) {
+      std::swap(ids_[i], ids_[last - 1]);
+      --count_[c];
+      return;
+    }
+  }
 }
 
 }  // namespace strand::post

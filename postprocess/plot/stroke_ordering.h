@@ -19,9 +19,11 @@ using MetricMap = std::function<slicer::Vec2(const slicer::Vec2&)>;
 struct OrderOptions {
   slicer::Vec2 start_mm = slicer::Vec2::Zero();  // pen position before the first stroke
   MetricMap metric;                             // empty = identity
-  int neighbours = 8;                           // candidate list length per endpoint
+  int neighbours = 12;                          // candidate list length per endpoint
   double evaluations_per_stroke = 200.0;        // improvement budget (deterministic)
-  int max_move_span = 1000;                     // strokes a single move may shift
+  // Strokes a single move may shift or reverse: bounds the cost of one move (the array tour
+  // pays per position), wide enough for the long-range fixes a nearest-neighbour tour needs.
+  int max_move_span = 50000;
 };
 
 // Joins strokes of the same tool whose end and start lie within join_mm of each other

@@ -62,5 +62,29 @@ TEST(ReadFile, DirectoriesAndMissingFilesAreNamed) {
   EXPECT_EQ(read_file(dir + "/x"), "abc");
 }
 
+
+TEST(OutputFiles, StreamedFileAppearsWholeAtCommit) {
+  const auto dir = testing::fresh_dir("io-stream");
+  OutputFiles out;
+  std::ostream& s = out.stage_stream(dir + "/big.txt");
+  for (int i = 0; i < 100000; ++i) s << "line " << i << "\n";
+  out.stage(dir + "/small.txt", "s");
+  EXPECT_FALSE(fs::exists(dir + "/big.txt")) << "nothing in place before commit";
+  out.commit();
+  const std::string text = testing::slurp(dir + "/big.txt");
+  EXPECT_EQ(text.substr(0, 14), "line 0\nline 1\n");
+  EXPECT_EQ(text.substr(text.size() - 11), "line 99999\n");
+  EXPECT_EQ(entries(dir), 2u) << "no temp file left";
+}
+
+TEST(OutputFiles, UncommittedStreamLeavesNothing) {
+  const auto dir = testing::fresh_dir("io-stream-abort");
+  {
+    OutputFiles out;
+    out.stage_stream(dir + "/big.txt") << "partial";
+  }
+  EXPECT_EQ(entries(dir), 0u);
+}
+
 }  // namespace
 }  // namespace strand::slicer

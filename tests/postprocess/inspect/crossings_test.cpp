@@ -93,5 +93,22 @@ TEST(Crossings, StarOfLinesThroughOnePointGivesEveryPair) {
   EXPECT_EQ(find_contacts(strands_of(segs), 0.01, 1e-3).crossings.size(), static_cast<std::size_t>(n * (n - 1) / 2));
 }
 
+// Long rows 0.01 mm apart joined by U-turn links (the layer that made a uniform grid test
+// every pair), crossed by one steep line: one crossing per row, no touches, no contacts
+// between neighbouring rows or at the U-turn joints.
+TEST(Crossings, LongRowSerpentineCrossedOnceGivesOneCrossingPerRow) {
+  std::string g = "G0 X0 Y0 Z0.5\n";
+  const int rows = 400;
+  for (int r = 0; r < rows; ++r) {
+    const double y = 0.01 * r;
+    g += "G1 X" + std::to_string(r % 2 == 0 ? 100.0 : 0.0) + " Y" + std::to_string(y) + "\n";
+    g += "G1 Y" + std::to_string(y + 0.01) + "\n";
+  }
+  g += "G0 X40.0 Y-1.0\nG1 X41.0 Y" + std::to_string(0.01 * rows + 1) + "\n";
+  const auto r = contacts(g.c_str());
+  EXPECT_EQ(r.crossings.size(), static_cast<std::size_t>(rows));
+  EXPECT_TRUE(r.touches.empty());
+}
+
 }  // namespace
 }  // namespace strand::post

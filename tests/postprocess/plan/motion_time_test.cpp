@@ -92,5 +92,65 @@ TEST(MotionTime, BlockTimeTriangleWhenTooShortToCruise) {
   EXPECT_NEAR(block_time_s(1.0, 0, 100, 0, 1000), 0.0632456, 1e-6);
 }
 
+
+// The planner as one backward and one forward pass over every block of the program (what
+// trapezoid_time did before it streamed between cut blocks): the reference to match exactly.
+double whole_program_time(const slicer::MotionProgram& p, const TimeOptions& o) {
+  struct B {
+    double len, v;
+    slicer::Vec3 unit;
+    bool stop;
+    double entry;
+  };
+  std::vector<B> b;
+  slicer::Vec3 at = p.start_mm;
+  bool stop = true;
+  for (const auto& mv : p.moves) {
+    const double len = (mv.end_mm - at).norm();
+    const double v = std::min(mv.feed_mm_per_min, o.max_feed_mm_per_min) / 60.0;
+    if (len < 1e-9 || v <= 0) continue;
+    b.push_back({len, v, (mv.end_mm - at) / len, stop, 0.0});
+    stop = false;
+    at = mv.end_mm;
+  }
+  const double a = o.acceleration_mm_per_s2;
+  for (std::size_t i = 1; i < b.size(); ++i) {
+    if (!b[i].stop) {
+      b[i].entry = std::min({b[i - 1].v, b[i].v,
+                             junction_speed_mm_per_s(b[i - 1].unit, b[i].unit, a, o.junction_deviation_mm)});
+    }
+  }
+  double exit = 0.0;
+  for (std::size_t k = b.size(); k-- > 0;) {
+    b[k].entry = std::min(b[k].entry, std::sqrt(exit * exit + 2 * a * b[k].len));
+    exit = b[k].entry;
+  }
+  for (std::size_t i = 1; i < b.size(); ++i) {
+    b[i].entry = std::min(b[i].entry, std::sqrt(b[i - 1].entry * b[i - 1].entry + 2 * a * b[i - 1].len));
+  }
+  double total = 0.0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    total += block_time_s(b[i].len, b[i].entry, b[i].v, i + 1 < b.size() ? b[i + 1].entry : 0.0, a);
+  }
+  return total;
+}
+
+TEST(MotionTime, StreamingBetweenCutBlocksEqualsOnePassOverTheWholeProgram) {
+  // Long rows (cut blocks), runs of tiny zig-zags (no cut for many blocks) and reversals.
+  std::vector<slicer::Move> moves;
+  double x = 0.0, y = 0.0;
+  for (int row = 0; row < 40; ++row) {
+    x = row % 2 == 0 ? 50.0 : 0.0;
+    moves.push_back(line(x, y, 1500));
+    for (int k = 0; k < 200; ++k) moves.push_back(line(x + (k % 2 ? 0.01 : 0.0), y += 0.003, 3000 + 10 * k));
+    moves.push_back(line(x, y -= 0.2, 600));  // reversal
+  }
+  const auto p = program(moves);
+  for (double accel : {50.0, 500.0, 5000.0}) {
+    const double streamed = trapezoid_time(p, options(accel)).total_s;
+    EXPECT_EQ(streamed, whole_program_time(p, options(accel))) << accel;  // bit for bit
+  }
+}
+
 }  // namespace
 }  // namespace strand::post
