@@ -46,13 +46,14 @@ for plot in plot-lettering plot-photo; do
 done
 # Meshes (samples/meshes/): a bone plug filled with the scaffold and with the tetrachiral
 # lattice, a torus with the scaffold, and a scaffold specimen laid on a curved plate
-# (3-axis, nozzle vertical); every file checked against its machine.
+# (3-axis, nozzle vertical); every file checked against its machine and drawn with its mesh
+# under it (PNG, and HTML with a 3D orbit view).
 slice() {  # name machine strand-slice-arguments...
   local name="$1" machine="$2"; shift 2
-  "$strand" slice "$@" --machine "$machine" -o "$name.gcode" --report "$name.json" | tee "$name-summary.txt"
+  "$strand" slice "$@" --machine "$machine" -o "$name.gcode" --report "$name.json" \
+    --preview "$name-preview.png" --preview "$name-preview.html" | tee "$name-summary.txt"
   "$strand" check "$name.gcode" --machine "$machine" > "$name-check.txt"
   tail -n 1 "$name-check.txt"
-  for ext in png html; do "$strand" preview "$name.gcode" -o "$name-preview.$ext"; done
 }
 slice bone-plug-scaffold deltawasp-2040-clay "$samples/meshes/bone-plug.stl" --pattern scaffold \
   --nozzle 0.6 --gap 1 --perimeters 1
