@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # The main demo: runs every job file in samples/ into OUT (G-code, JSON report, summary),
 # draws previews of each job's G-code, and runs every sweep in samples/sweeps/ into
-# OUT/<sweep name>/ (G-code per point, manifest, index.html contact sheet).
+# OUT/<sweep name>/ (G-code per point, manifest, index.html contact sheet). Jobs on a curved
+# substrate write what their machine takes (the job's "output" extension: a robot cell's pose
+# CSV with its .java, .src, .dat and .extruder.gcode, or a rotary printer's 4-axis G-code),
+# checked on their cylinder.
 # Usage: samples/run_demo.sh path/to/strand OUT
 set -euo pipefail
 strand="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
@@ -11,9 +14,20 @@ mkdir -p "$out"
 cd "$out"
 for job in "$samples"/*.json; do
   name="$(basename "$job" .json)"
+  machine="$(sed -n 's/.*"machine": *"\([^"]*\)".*/\1/p' "$job")"
+  if grep -q '"substrate"' "$job"; then
+    output="$(sed -n 's/.*"output": *"\([^"]*\)".*/\1/p' "$job")"
+    ext="${output##*.}"
+    "$strand" job "$job" -o "$name.$ext" --report "$name.json" | tee "$name-summary.txt"
+    # Crossings in (u, v) around the cylinder, poses against the nozzle, reach and joints.
+    "$strand" check "$name.$ext" --machine "$machine" > "$name-check.txt"
+    tail -n 1 "$name-check.txt"
+    # Drawn on the workpiece: the cylinder's axis along x, its u = 0 line on top.
+    for view in png html glb; do "$strand" preview "$name.$ext" -o "$name-preview.$view"; done
+    continue
+  fi
   "$strand" job "$job" -o "$name.gcode" --report "$name.json" | tee "$name-summary.txt"
   # Check the specimen against its machine (crossings, strands, volume) and draw layer 1.
-  machine="$(sed -n 's/.*"machine": *"\([^"]*\)".*/\1/p' "$job")"
   "$strand" check "$name.gcode" --machine "$machine" --svg-layer 1 "$name-layer1.svg" > "$name-check.txt"
   tail -n 1 "$name-check.txt"
   for ext in png svg html glb; do "$strand" preview "$name.gcode" -o "$name-preview.$ext"; done
