@@ -12,6 +12,9 @@ samples="$(cd "$(dirname "$0")" && pwd)"
 out="$2"
 mkdir -p "$out"
 cd "$out"
+# Inputs are named relative to OUT so the file headers and reports carry no path of this
+# machine (the same checkout anywhere gives byte-identical files).
+samples="$(realpath --relative-to=. "$samples")"
 for job in "$samples"/*.json; do
   name="$(basename "$job" .json)"
   machine="$(sed -n 's/.*"machine": *"\([^"]*\)".*/\1/p' "$job")"
