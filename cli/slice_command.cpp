@@ -54,8 +54,9 @@ nlohmann::json pattern_values(const SliceArgs& a) {
   nlohmann::json given = nlohmann::json::object();
   if (!g) return given;  // produce_slice names the allowed patterns
   std::vector<std::string> problems;
-  for (const auto& [key, opt] : a.options) {
+  for (const auto& [flag, opt] : a.options) {
     if (opt->count() == 0) continue;
+    const std::string& key = flag;  // a lambda cannot capture a structured binding in clang 14
     const auto& defs = g->table().defs;
     const auto it =
         std::find_if(defs.begin(), defs.end(), [&](const auto& d) { return d.key == key; });

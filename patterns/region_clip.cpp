@@ -28,7 +28,7 @@ struct EdgeRef {
 // Ring edges bucketed in a uniform grid; each query visits the cells a segment's box covers.
 class EdgeGrid {
  public:
-  explicit EdgeGrid(const RingSet& rs) : rs_(rs) {
+  explicit EdgeGrid(const RingSet& rs) {
     std::size_t count = 0;
     double length = 0.0;
     bool first = true;
@@ -87,7 +87,6 @@ class EdgeGrid {
     }
   }
 
-  const RingSet& rs_;
   Vec2 lo_ = Vec2::Zero(), hi_ = Vec2::Zero();
   double cell_ = 1.0;
   int nx_ = 1, ny_ = 1;

@@ -79,7 +79,7 @@ class Joiner {
   static constexpr int kVariants = 24;
 
   Joiner(const RingSet& rs, const std::vector<FillPiece>& pieces)
-      : rs_(rs), pieces_(pieces), g_(end_graph(rs, pieces)) {}
+      : pieces_(pieces), g_(end_graph(rs, pieces)) {}
 
   // Variant v: order reversed when v is odd, preference (v / 2) % 3, start (v / 6) / 4 in.
   std::vector<Chain> run(int variant) {
@@ -222,7 +222,6 @@ class Joiner {
     return false;
   }
 
-  const RingSet& rs_;
   const std::vector<FillPiece>& pieces_;
   EndGraph g_;
   std::vector<bool> used_;

@@ -44,6 +44,8 @@ struct UvBox {
 struct TriangleMesh {
   std::vector<Vec3> vertices_mm;
   std::vector<std::array<int, 3>> triangles;  // counter-clockwise seen from outside
+
+  bool operator==(const TriangleMesh&) const = default;
 };
 
 class Surface {
