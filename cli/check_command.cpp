@@ -1,5 +1,6 @@
-// `strand check FILE.gcode [--machine NAME|FILE] [--json] [--svg-layer N OUT.svg]`: exit 0
-// when the file passes, 1 when it has problems, 2 for bad input.
+// `strand check FILE.gcode [--machine NAME|FILE] [--rules diw|fdm|plot] [--json]
+// [--svg-layer N OUT.svg]`: exit 0 when the file passes, 1 when it has problems, 2 for bad
+// input.
 #include <iostream>
 #include <memory>
 
@@ -20,6 +21,7 @@ namespace {
 struct CheckArgs {
   std::string file;
   std::string machine;
+  std::string rules;  // empty: post::default_rules
   bool json = false;
   std::vector<std::string> svg_layer;  // {N, OUT.svg}
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
@@ -64,8 +66,11 @@ int run_check(const CheckArgs& a) {
   std::unique_ptr<machines::MachineProfile> machine;
   if (!a.machine.empty())
     machine = std::make_unique<machines::MachineProfile>(machines::load_profile(a.machine));
-  const post::ParsedGcode parsed = post::parse_gcode(text);
   post::CheckOptions options;
+  options.rules = a.rules.empty() ? post::default_rules(machine.get(), text)
+                                  : post::RulesChoice{post::check_rules_from_string(a.rules),
+                                                      "given with --rules"};
+  const post::ParsedGcode parsed = post::parse_for_check(text, options.rules->rules, machine.get());
   options.arc_tolerance_mm = a.arc_tolerance_mm;
   options.touch_mm = slicer::kGcodeResolutionMm;
   options.machine = machine.get();
@@ -84,6 +89,11 @@ void add_check_command(CLI::App& app, Action& action) {
   sub->add_option("file", a->file, "G-code file to check")->required();
   sub->add_option("--machine", a->machine,
                   "machine profile name or .json path: also check build volume and arcs");
+  sub->add_option("--rules", a->rules,
+                  "diw: no crossing; fdm: infill may cross; plot: strokes may cross, pen read "
+                  "from the file (default: plot for plotter profiles, fdm for files from an FDM "
+                  "slicer, else diw)")
+      ->type_name("diw|fdm|plot");
   sub->add_flag("--json", a->json, "print the report as JSON");
   sub->add_option("--svg-layer", a->svg_layer, "write a top view of layer N (0-based) to OUT.svg")
       ->expected(2)
