@@ -33,6 +33,8 @@ struct Words {
   }
 };
 
+constexpr double kMaxCommandNumber = 1e6;
+
 bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 
 // M-codes whose argument is free text ("M117 Open the valve"), not address words.
@@ -157,6 +159,8 @@ class Reader {
     if (w.bad_number) out_.issues.push_back({n, "non-finite or malformed number in '" + std::string(s) + "'"});
     if (w.count == 0) return;
     const char cmd = w.letter[0];
+    // G and M numbers are small; a huge one ("G1e12") names no command and would not fit int.
+    if (!(w.value[0] >= 0.0 && w.value[0] < kMaxCommandNumber)) return;
     const int code = static_cast<int>(w.value[0]);
     if (cmd == 'G') g_code(code, w, n);
     if (cmd == 'M') m_code(code, w, n);

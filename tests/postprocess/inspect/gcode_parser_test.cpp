@@ -69,6 +69,14 @@ TEST(GcodeParserBounds, AbsurdArcRadiiAreReadAsStraightMovesAndReported) {
   }
 }
 
+TEST(GcodeParserBounds, CommandNumbersBeyondAnyCommandAreIgnored) {
+  // Found by gcode_fuzz: the number did not fit an int (undefined behaviour).
+  const ParsedGcode p = parse_gcode("M1111111111300 S30\nG1111111111 X1\nG1e12 X2\nM-5\nG1 X3\n");
+  ASSERT_EQ(p.program.moves.size(), 1u);
+  EXPECT_EQ(p.program.moves[0].end_mm.x(), 3.0);
+  EXPECT_EQ(p.pen_commands, 0);
+}
+
 TEST(GcodeParserBounds, TheChordsOfAllArcsAreBounded) {
   // Full circles of 1 km radius need about 70,000 chords each at 0.001 mm: within the budget
   // for a few, refused after about 700.
@@ -128,6 +136,14 @@ TEST(GcodeParserPen, ProfileValuesOverrideTheConvention) {
 TEST(GcodeParserPen, GrblSpindleM3DownM5Up) {
   EXPECT_EQ(kinds(parse_gcode("M5\nG1 X1\nM3 S1000\nG1 X2\nM3 S0\nG1 X3\nM3\nG1 X4\n")),
             (std::vector<MoveKind>{kAir, kInk, kAir, kInk}));
+}
+
+TEST(GcodeParserPen, GrblServoProfileReadsItsSpindleValues) {
+  // xy-plotter-grbl: M3 S50 up, M3 S30 down; without the profile both are "spindle on".
+  const char* g = "M3 S50\nG1 X1\nM3 S30\nG1 X2\nM5\nG1 X3\n";
+  EXPECT_EQ(kinds(parse_gcode(g, pen_reading_from(machines::load_profile("xy-plotter-grbl")))),
+            (std::vector<MoveKind>{kAir, kInk, kAir}));
+  EXPECT_EQ(kinds(parse_gcode(g)), (std::vector<MoveKind>{kInk, kInk, kAir}));
 }
 
 TEST(GcodeParserPen, FilesWithEIgnorePenCommands) {
