@@ -160,6 +160,7 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
   r.toolpath.parameters["rotate"] = s.rotate;
   r.toolpath.derived["substrate"] = surface.describe();
   r.produced = post::produce_program(r.toolpath, std::move(program), machine, options, s.output);
+  r.part.mesh = substrate;  // drawn under the path by --preview
   return r;
 }
 
