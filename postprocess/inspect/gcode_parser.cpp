@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <limits>
 #include <optional>
 
 #include "postprocess/plan/arc_segmentation.h"
@@ -376,26 +375,6 @@ class Reader {
 
 ParsedGcode parse_gcode(std::string_view text, const PenReading& pen) {
   return Reader(text, pen).run();
-}
-
-ParsedGcode parse_drawing(std::string_view text, const PenReading& pen) {
-  ParsedGcode first = parse_gcode(text, pen);
-  if (first.has_e || first.pen_commands > 0 || pen.z_down_max_mm) return first;
-  double low = std::numeric_limits<double>::infinity(), high = -low;
-  for (const Move& m : first.program.moves) {
-    if (m.kind != MoveKind::Deposit) continue;
-    low = std::min(low, m.end_mm.z());
-    high = std::max(high, m.end_mm.z());
-  }
-  if (!(high - low > kPenLiftMinMm)) return first;  // one drawing height: nothing to lift
-  PenReading by_z = pen;
-  by_z.z_down_max_mm = low + kPenLiftMinMm;
-  ParsedGcode second = parse_gcode(text, by_z);
-  second.notes.push_back({0, "pen read from Z: drawing moves above z " +
-                                 slicer::short_number(*by_z.z_down_max_mm) +
-                                 " mm (the lowest drawing z + " +
-                                 slicer::short_number(kPenLiftMinMm) + " mm) are pen-up travels"});
-  return second;
 }
 
 }  // namespace strand::post

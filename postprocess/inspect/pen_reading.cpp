@@ -1,9 +1,13 @@
 // Pen up/down from plotter commands: the profile's servo values when given, else the
-// conventions of the programs that write these files.
+// conventions of the programs that write these files; Z-lift drawings read by their heights
+// (parse_drawing, declared in gcode_parser.h).
 #include "postprocess/inspect/pen_reading.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "postprocess/inspect/gcode_parser.h"
 #include "slicer/params.h"
 
 namespace strand::post {
@@ -76,6 +80,26 @@ std::string pen_convention(const PenReading& r, int m) {
     default:
       return "pen read from M3/M5 as a GRBL spindle: M3 down, M5 or M3 S0 up";
   }
+}
+
+ParsedGcode parse_drawing(std::string_view text, const PenReading& pen) {
+  ParsedGcode first = parse_gcode(text, pen);
+  if (first.has_e || first.pen_commands > 0 || pen.z_down_max_mm) return first;
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const slicer::Move& m : first.program.moves) {
+    if (m.kind != slicer::MoveKind::Deposit) continue;
+    low = std::min(low, m.end_mm.z());
+    high = std::max(high, m.end_mm.z());
+  }
+  if (!(high - low > kPenLiftMinMm)) return first;  // one drawing height: nothing to lift
+  PenReading by_z = pen;
+  by_z.z_down_max_mm = low + kPenLiftMinMm;
+  ParsedGcode second = parse_gcode(text, by_z);
+  second.notes.push_back({0, "pen read from Z: drawing moves above z " +
+                                 slicer::short_number(*by_z.z_down_max_mm) +
+                                 " mm (the lowest drawing z + " +
+                                 slicer::short_number(kPenLiftMinMm) + " mm) are pen-up travels"});
+  return second;
 }
 
 }  // namespace strand::post
