@@ -4,6 +4,7 @@
 // (;ROTARY_AXIS: header) are mapped back onto their cylinder (postprocess/inspect/pose_check.h).
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
@@ -23,7 +24,7 @@ namespace {
 struct CheckArgs {
   std::string file;
   std::string machine;
-  std::string rules;  // empty: post::default_rules
+  std::string rules;  // empty: the default of post::read_for_check
   bool json = false;
   std::vector<std::string> svg_layer;  // {N, OUT.svg}
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
@@ -97,11 +98,12 @@ int run_check(const CheckArgs& a) {
         ": a robot cell's motion is in its pose CSV; check that (strand check PART.csv --machine " +
         a.machine + ")");
   }
+  std::optional<post::RulesChoice> given;
+  if (!a.rules.empty()) given = {post::check_rules_from_string(a.rules), "given with --rules"};
+  const post::CheckInput in = post::read_for_check(text, machine.get(), given);
+  const post::ParsedGcode& parsed = in.parsed;
   post::CheckOptions options;
-  options.rules = a.rules.empty() ? post::default_rules(machine.get(), text)
-                                  : post::RulesChoice{post::check_rules_from_string(a.rules),
-                                                      "given with --rules"};
-  const post::ParsedGcode parsed = post::parse_for_check(text, options.rules->rules, machine.get());
+  options.rules = in.rules;
   options.arc_tolerance_mm = a.arc_tolerance_mm;
   options.touch_mm = slicer::kGcodeResolutionMm;
   options.machine = machine.get();

@@ -191,9 +191,10 @@ CheckReport check_parsed(const ParsedGcode& parsed, const CheckOptions& o) {
 }
 
 CheckReport check_gcode(std::string_view text, const CheckOptions& o) {
+  CheckInput in = read_for_check(text, o.machine, o.rules);
   CheckOptions with_rules = o;
-  if (!with_rules.rules) with_rules.rules = default_rules(o.machine, text);
-  return check_parsed(parse_for_check(text, with_rules.rules->rules, o.machine), with_rules);
+  with_rules.rules = in.rules;
+  return check_parsed(in.parsed, with_rules);
 }
 
 nlohmann::json to_json(const CheckReport& r) {

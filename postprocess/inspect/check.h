@@ -34,10 +34,17 @@ struct RulesChoice {
 // Without --rules: a plotter profile -> plot; else a file whose header names an FDM slicer
 // (PrusaSlicer, Cura, ...) -> fdm; else diw (Strand's own and unknown files).
 RulesChoice default_rules(const machines::MachineProfile* machine, std::string_view gcode_text);
-// The file read as the rules need it: pen commands with the profile's values, and for plot
-// rules pen lifts by Z.
-ParsedGcode parse_for_check(std::string_view gcode_text, CheckRules rules,
-                            const machines::MachineProfile* machine);
+
+struct CheckInput {
+  ParsedGcode parsed;
+  RulesChoice rules;
+};
+// The file read as the rules need it (pen commands with the profile's values; for plot rules
+// pen lifts by Z) and the rules settled: `given` when set, else default_rules, except that a
+// file checked without a machine that lifts a pen by command (M300 S, M280, M3/M5) is a
+// drawing (plot).
+CheckInput read_for_check(std::string_view gcode_text, const machines::MachineProfile* machine,
+                          const std::optional<RulesChoice>& given);
 
 struct CheckOptions {
   double arc_tolerance_mm = 0.01;  // chord error when arcs are flattened for the contact search

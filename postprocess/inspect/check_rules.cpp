@@ -52,10 +52,17 @@ RulesChoice default_rules(const machines::MachineProfile* machine, std::string_v
                                    : "no plotter profile and no FDM slicer named in the file"};
 }
 
-ParsedGcode parse_for_check(std::string_view text, CheckRules rules,
-                            const machines::MachineProfile* machine) {
+CheckInput read_for_check(std::string_view text, const machines::MachineProfile* machine,
+                          const std::optional<RulesChoice>& given) {
+  CheckInput in;
+  in.rules = given ? *given : default_rules(machine, text);
   const PenReading pen = machine ? pen_reading_from(*machine) : PenReading{};
-  return rules == CheckRules::Plot ? parse_drawing(text, pen) : parse_gcode(text, pen);
+  in.parsed =
+      in.rules.rules == CheckRules::Plot ? parse_drawing(text, pen) : parse_gcode(text, pen);
+  // parse_drawing reads a file with pen commands as parse_gcode does: no second reading.
+  if (!given && !machine && in.rules.rules == CheckRules::Diw && in.parsed.pen_commands > 0)
+    in.rules = {CheckRules::Plot, "the file lifts a pen by command (M300 S, M280 or M3/M5)"};
+  return in;
 }
 
 }  // namespace strand::post

@@ -133,6 +133,10 @@ TEST(CheckCliRules, PlotterProfilePicksPlotRulesAndReadsM300PenLifts) {
   EXPECT_EQ(j["crossings"].get<int>(), 0) << "the pen-up G1 travel is not ink";
   EXPECT_EQ(j["layers"][0]["strands"].get<int>(), 2);
   EXPECT_NE(j["notes"][0]["what"].get<std::string>().find("M300 S"), std::string::npos);
+  const auto by_default = run_strand("check u.gcode", dir);
+  EXPECT_EQ(by_default.exit_code, 0) << by_default.out;
+  EXPECT_NE(by_default.out.find("rules plot: the file lifts a pen by command"), std::string::npos)
+      << by_default.out;
   const auto plotter = run_strand("check u.gcode --machine xy-plotter-servo", dir);
   EXPECT_NE(plotter.out.find("rules plot: machine xy-plotter-servo is a plotter"),
             std::string::npos)

@@ -1,6 +1,7 @@
-// Fuzz target: any bytes as G-code, read and checked as `strand check` does (the rules picked
-// from the file against the delta; plot rules against a polargraph, with pen commands and Z
-// lifts read and axes mapped to paper) and cut into a preview scene as `strand preview` does.
+// Fuzz target: any bytes as G-code, read and checked as `strand check` does (against the
+// delta; against a polargraph, with pen commands and Z lifts read and axes mapped to paper;
+// without a machine, rules and pen from the file alone) and cut into a preview scene as
+// `strand preview` does.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -15,15 +16,15 @@ namespace {
 
 using namespace strand;
 
-void check_against(std::string_view text, const machines::MachineProfile& machine, bool preview) {
+void check_against(std::string_view text, const machines::MachineProfile* machine, bool preview) {
   post::CheckOptions options;
-  options.machine = &machine;
-  options.rules = post::default_rules(&machine, text);
-  const post::ParsedGcode parsed = post::parse_for_check(text, options.rules->rules, &machine);
-  const post::CheckReport report = post::check_parsed(parsed, options);
+  options.machine = machine;
+  const post::CheckInput in = post::read_for_check(text, machine, std::nullopt);
+  options.rules = in.rules;
+  const post::CheckReport report = post::check_parsed(in.parsed, options);
   slicer::dump_json(post::to_json(report));  // as `strand check --json` prints it
   post::to_text(report);
-  if (preview) post::preview_scene(parsed.program, 0.01);
+  if (preview) post::preview_scene(in.parsed.program, 0.01);
 }
 
 }  // namespace
@@ -33,11 +34,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const machines::MachineProfile plotter = machines::load_profile("polargraph");
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
-    check_against(text, delta, true);
+    check_against(text, &delta, true);
   } catch (const InputError&) {
   }
   try {
-    check_against(text, plotter, false);
+    check_against(text, &plotter, false);
+  } catch (const InputError&) {
+  }
+  try {
+    check_against(text, nullptr, false);  // rules and pen from the file alone
   } catch (const InputError&) {
   }
   return 0;
