@@ -198,6 +198,10 @@ INSTANTIATE_TEST_SUITE_P(
                 "slice.perimeters = 50"},
         BadCase{"plotter", "plug.stl --nozzle 0.6 --gap 1 --machine xy-plotter-servo",
                 "a pen plotter; slice needs a printer"},
+        BadCase{"robot_cell", "plug.stl --nozzle 0.6 --gap 1 --machine kuka-iiwa14-wasp-cylinder",
+                "(robot-holds-substrate): slice and --onto need a 3-axis printer"},
+        BadCase{"rotary", "plug.stl --nozzle 0.6 --gap 1 --machine marlin-rotary-a",
+                "(rotary): slice and --onto need a 3-axis printer"},
         BadCase{"too_much_work", "plug.stl --nozzle 0.001 --pitch 0.001 --layer-height 0.001",
                 "more work than allowed"}),
     [](const auto& info) { return std::string(info.param.name); });
