@@ -41,8 +41,8 @@ struct CheckInput {
 };
 // The file read as the rules need it (pen commands with the profile's values; for plot rules
 // pen lifts by Z) and the rules settled: `given` when set, else default_rules, except that a
-// file checked without a machine that lifts a pen by command (M300 S, M280, M3/M5) is a
-// drawing (plot).
+// file checked without a machine that lifts a pen servo (M300 S, M280 S) is a drawing (plot);
+// M3/M5 alone stay diw (a GRBL dispenser switches the same way).
 CheckInput read_for_check(std::string_view gcode_text, const machines::MachineProfile* machine,
                           const std::optional<RulesChoice>& given);
 

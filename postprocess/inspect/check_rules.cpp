@@ -60,8 +60,8 @@ CheckInput read_for_check(std::string_view text, const machines::MachineProfile*
   in.parsed =
       in.rules.rules == CheckRules::Plot ? parse_drawing(text, pen) : parse_gcode(text, pen);
   // parse_drawing reads a file with pen commands as parse_gcode does: no second reading.
-  if (!given && !machine && in.rules.rules == CheckRules::Diw && in.parsed.pen_commands > 0)
-    in.rules = {CheckRules::Plot, "the file lifts a pen by command (M300 S, M280 or M3/M5)"};
+  if (!given && !machine && in.rules.rules == CheckRules::Diw && in.parsed.pen_servo)
+    in.rules = {CheckRules::Plot, "the file lifts a pen servo (M300 S or M280 S)"};
   return in;
 }
 

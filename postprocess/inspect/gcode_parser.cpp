@@ -203,6 +203,7 @@ class Reader {
     const std::optional<bool> down = pen_down_by_command(pen_, code, w.get('S'), w.get('P'));
     if (!down) return;
     if (out_.pen_commands++ == 0) out_.notes.push_back({n, pen_convention(pen_, code)});
+    out_.pen_servo = out_.pen_servo || code == 300 || code == 280;
     pen_down_ = *down;
   }
 

@@ -39,6 +39,9 @@ struct ParsedGcode {
   bool has_e = false;              // deposits are recognised by E when true, by G1 otherwise
   bool inches = false;
   int pen_commands = 0;  // M300/M280/M3/M4/M5 read as pen up or down
+  // Some were M300 S or M280 S: a pen servo. M3/M5 alone may drive a pen, a laser or a
+  // GRBL machine's dispenser, so only a servo makes the file a drawing by default.
+  bool pen_servo = false;
 };
 
 // Layers come from ;LAYER:/;LAYER_CHANGE comments when present, else from z changes of

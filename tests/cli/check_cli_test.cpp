@@ -135,7 +135,7 @@ TEST(CheckCliRules, PlotterProfilePicksPlotRulesAndReadsM300PenLifts) {
   EXPECT_NE(j["notes"][0]["what"].get<std::string>().find("M300 S"), std::string::npos);
   const auto by_default = run_strand("check u.gcode", dir);
   EXPECT_EQ(by_default.exit_code, 0) << by_default.out;
-  EXPECT_NE(by_default.out.find("rules plot: the file lifts a pen by command"), std::string::npos)
+  EXPECT_NE(by_default.out.find("rules plot: the file lifts a pen servo"), std::string::npos)
       << by_default.out;
   const auto plotter = run_strand("check u.gcode --machine xy-plotter-servo", dir);
   EXPECT_NE(plotter.out.find("rules plot: machine xy-plotter-servo is a plotter"),
