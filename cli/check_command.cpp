@@ -1,9 +1,10 @@
-// `strand check FILE.gcode [--machine NAME|FILE] [--json] [--svg-layer N OUT.svg]`: exit 0
-// when the file passes, 1 when it has problems, 2 for bad input. A pose CSV (FILE.csv, with
-// the robot cell as --machine) and rotary G-code (;ROTARY_AXIS: header) are mapped back onto
-// their cylinder (postprocess/inspect/pose_check.h).
+// `strand check FILE.gcode [--machine NAME|FILE] [--rules diw|fdm|plot] [--json]
+// [--svg-layer N OUT.svg]`: exit 0 when the file passes, 1 when it has problems, 2 for bad
+// input. A pose CSV (FILE.csv, with the robot cell as --machine) and rotary G-code
+// (;ROTARY_AXIS: header) are mapped back onto their cylinder (postprocess/inspect/pose_check.h).
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
@@ -23,6 +24,7 @@ namespace {
 struct CheckArgs {
   std::string file;
   std::string machine;
+  std::string rules;  // empty: the default of post::read_for_check
   bool json = false;
   std::vector<std::string> svg_layer;  // {N, OUT.svg}
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
@@ -96,8 +98,12 @@ int run_check(const CheckArgs& a) {
         ": a robot cell's motion is in its pose CSV; check that (strand check PART.csv --machine " +
         a.machine + ")");
   }
-  const post::ParsedGcode parsed = post::parse_gcode(text);
+  std::optional<post::RulesChoice> given;
+  if (!a.rules.empty()) given = {post::check_rules_from_string(a.rules), "given with --rules"};
+  const post::CheckInput in = post::read_for_check(text, machine.get(), given);
+  const post::ParsedGcode& parsed = in.parsed;
   post::CheckOptions options;
+  options.rules = in.rules;
   options.arc_tolerance_mm = a.arc_tolerance_mm;
   options.touch_mm = slicer::kGcodeResolutionMm;
   options.machine = machine.get();
@@ -116,6 +122,11 @@ void add_check_command(CLI::App& app, Action& action) {
   sub->add_option("file", a->file, "G-code file, or a robot cell's pose CSV, to check")->required();
   sub->add_option("--machine", a->machine,
                   "machine profile name or .json path: also check build volume and arcs");
+  sub->add_option("--rules", a->rules,
+                  "diw: no crossing; fdm: infill may cross; plot: strokes may cross, pen read "
+                  "from the file (default: plot for plotter profiles, fdm for files from an FDM "
+                  "slicer, else diw)")
+      ->type_name("diw|fdm|plot");
   sub->add_flag("--json", a->json, "print the report as JSON");
   sub->add_option("--svg-layer", a->svg_layer, "write a top view of layer N (0-based) to OUT.svg")
       ->expected(2)

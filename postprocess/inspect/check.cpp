@@ -18,8 +18,8 @@ using slicer::Vec2;
 using slicer::Vec3;
 
 bool CheckReport::ok() const {
-  return (pen_drawing || crossing_count() == 0) && parse_issues.empty() && arcs_forbidden_total == 0 &&
-         outside_volume_total == 0;
+  return crossing_count() == crossings_allowed && parse_issues.empty() &&
+         arcs_forbidden_total == 0 && outside_volume_total == 0;
 }
 
 std::size_t CheckReport::crossing_count() const {
@@ -111,9 +111,18 @@ void check_reach(const ParsedGcode& paper, const machines::MachineProfile& m, Ch
   }
 }
 
+// Whether the rules let these two moves cross (see CheckRules).
+bool crossing_allowed(const slicer::MotionProgram& p, const Contact& c, CheckRules rules) {
+  if (rules == CheckRules::Plot) return true;
+  if (rules == CheckRules::Diw) return false;
+  return p.moves[c.move_a].feature != slicer::Feature::Wall ||
+         p.moves[c.move_b].feature != slicer::Feature::Wall;
+}
+
 // One row per layer of the program; a row -1 only when deposits before the first layer
 // have contacts.
 void fill_layers(const ParsedGcode& parsed, const CheckOptions& o, CheckReport& r) {
+  const CheckRules rules = r.rules.rules;
   const Estimate est = estimate(parsed.program);
   for (const auto& le : est.layers) r.layers.push_back({le.layer, le.z_mm, le.strands, {}, {}});
   const ContactReport contacts = find_contacts(parsed.program, o.arc_tolerance_mm, o.touch_mm);
@@ -125,7 +134,10 @@ void fill_layers(const ParsedGcode& parsed, const CheckOptions& o, CheckReport& 
   auto row = [&](int layer) -> LayerCheck& {
     return r.layers[static_cast<std::size_t>(std::max(layer, -1) + (before_first ? 1 : 0))];
   };
-  for (const auto& c : contacts.crossings) row(c.layer).crossings.push_back(c);
+  for (const auto& c : contacts.crossings) {
+    row(c.layer).crossings.push_back(c);
+    if (crossing_allowed(parsed.program, c, rules)) ++r.crossings_allowed;
+  }
   for (const auto& c : contacts.touches) row(c.layer).touches.push_back(c);
 }
 
@@ -160,8 +172,10 @@ CheckReport check_parsed(const ParsedGcode& parsed, const CheckOptions& o) {
   r.moves = parsed.program.moves.size();
   r.move_lines = parsed.move_lines;
   r.parse_issues = parsed.issues;
+  r.notes = parsed.notes;
+  r.rules = o.rules ? *o.rules : default_rules(o.machine, {});
+  r.pen_drawing = r.rules.rules == CheckRules::Plot;
   if (o.machine && o.machine->plotter.enabled) {
-    r.pen_drawing = true;
     r.machine = o.machine->name;
     const ParsedGcode paper = to_paper(parsed, o.machine->plotter);
     fill_layers(paper, o, r);
@@ -177,7 +191,10 @@ CheckReport check_parsed(const ParsedGcode& parsed, const CheckOptions& o) {
 }
 
 CheckReport check_gcode(std::string_view text, const CheckOptions& o) {
-  return check_parsed(parse_gcode(text), o);
+  CheckInput in = read_for_check(text, o.machine, o.rules);
+  CheckOptions with_rules = o;
+  with_rules.rules = in.rules;
+  return check_parsed(in.parsed, with_rules);
 }
 
 nlohmann::json to_json(const CheckReport& r) {
@@ -194,16 +211,22 @@ nlohmann::json to_json(const CheckReport& r) {
   }
   nlohmann::json issues = nlohmann::json::array(), arcs = nlohmann::json::array(),
                  outside = nlohmann::json::array();
+  nlohmann::json notes = nlohmann::json::array();
   for (const auto& i : r.parse_issues) issues.push_back({{"line", i.line}, {"what", i.what}});
+  for (const auto& i : r.notes) notes.push_back({{"line", i.line}, {"what", i.what}});
   for (const auto& f : r.arcs_forbidden) arcs.push_back(finding_json(f));
   for (const auto& f : r.outside_volume) outside.push_back(finding_json(f));
   return {{"ok", r.ok()},
           {"machine", r.machine},
+          {"rules", to_string(r.rules.rules)},
+          {"rules_why", r.rules.why},
           {"pen_drawing", r.pen_drawing},
           {"moves", r.moves},
           {"layers", layers},
           {"crossings", r.crossing_count()},
+          {"crossings_allowed", r.crossings_allowed},
           {"touches", r.touch_count()},
+          {"notes", notes},
           {"parse_issues", issues},
           {"arcs_forbidden", arcs},
           {"arcs_forbidden_total", r.arcs_forbidden_total},
@@ -214,6 +237,26 @@ nlohmann::json to_json(const CheckReport& r) {
 namespace {
 
 constexpr std::size_t kTextListed = 20;  // problems listed per kind in the text report
+
+std::string crossing_heading(const CheckReport& r) {
+  const std::size_t n = r.crossing_count(), allowed = r.crossings_allowed;
+  if (n == 0) return "";
+  if (r.pen_drawing)
+    return "strokes crossing (a drawing may cross itself; listed for review: " + std::to_string(n) +
+           "):\n";
+  if (allowed == 0) return "self-crossings (" + std::to_string(n) + "):\n";
+  return "crossings (" + std::to_string(n) + ", " + std::to_string(allowed) +
+         " allowed by fdm rules: infill may cross; " + std::to_string(n - allowed) +
+         " between walls):\n";
+}
+
+void list_notes(const std::vector<ParseIssue>& list, std::string& out) {
+  for (std::size_t i = 0; i < list.size() && i < kTextListed; ++i) {
+    out += "  line " + std::to_string(list[i].line) + ": " + list[i].what + "\n";
+  }
+  if (list.size() > kTextListed)
+    out += "  ... and " + std::to_string(list.size() - kTextListed) + " more\n";
+}
 
 std::string layer_range(int first, int last) {
   return first == last ? std::to_string(first) : std::to_string(first) + "-" + std::to_string(last);
@@ -274,13 +317,9 @@ std::string to_text(const CheckReport& r) {
                     " moves" +
                     (r.machine.empty() ? ", no machine given (bounds and arcs not checked)"
                                        : ", machine " + r.machine) +
-                    "\n";
+                    "\nrules " + to_string(r.rules.rules) + ": " + r.rules.why + "\n";
   out += layer_table(r);
-  if (r.crossing_count() > 0) {
-    out += r.pen_drawing ? "strokes crossing (a drawing may cross itself; listed for review: " +
-                               std::to_string(r.crossing_count()) + "):\n"
-                         : "self-crossings (" + std::to_string(r.crossing_count()) + "):\n";
-  }
+  out += crossing_heading(r);
   list_contacts(r, true, out);
   if (r.arcs_forbidden_total > 0)
     out += "arcs the machine forbids (" + std::to_string(r.arcs_forbidden_total) + "):\n";
@@ -290,12 +329,9 @@ std::string to_text(const CheckReport& r) {
   list_findings(r.outside_volume, r.outside_volume_total, out);
   if (!r.parse_issues.empty())
     out += "problems in the file (" + std::to_string(r.parse_issues.size()) + "):\n";
-  for (std::size_t i = 0; i < r.parse_issues.size() && i < kTextListed; ++i) {
-    out +=
-        "  line " + std::to_string(r.parse_issues[i].line) + ": " + r.parse_issues[i].what + "\n";
-  }
-  if (r.parse_issues.size() > kTextListed)
-    out += "  ... and " + std::to_string(r.parse_issues.size() - kTextListed) + " more\n";
+  list_notes(r.parse_issues, out);
+  if (!r.notes.empty()) out += "notes (" + std::to_string(r.notes.size()) + "):\n";
+  list_notes(r.notes, out);
   if (r.touch_count() > 0)
     out += "touches (allowed, listed for review: " + std::to_string(r.touch_count()) + "):\n";
   list_contacts(r, false, out);

@@ -32,6 +32,8 @@ struct Words {
   }
 };
 
+constexpr double kMaxCommandNumber = 1e6;
+
 bool is_letter(char c) { return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z'); }
 
 // M-codes whose argument is free text ("M117 Open the valve"), not address words.
@@ -96,17 +98,17 @@ Feature feature_from_comment(std::string_view name, Feature fallback) {
 }
 
 // Another slicer's ;TYPE: role (Cura "WALL-OUTER", "FILL"; PrusaSlicer "Perimeter",
-// "Solid infill") as the nearest feature, so previews colour walls and fills apart.
-Feature feature_from_role(std::string_view role, Feature fallback) {
+// "Solid infill") as the nearest feature, so previews colour walls and fills apart. Every
+// role that is not a wall (fills, gap fill, skirt, support, wipe tower) reads as infill:
+// FDM rules let such moves cross. Strand's own files follow with ;FEATURE:, which wins.
+Feature feature_from_role(std::string_view role) {
   auto has = [role](std::string_view w) { return role.find(w) != std::string_view::npos; };
-  if (has("WALL") || has("erimeter")) return Feature::Wall;
-  if (has("FILL") || has("SKIN") || has("nfill") || has("Bridge")) return Feature::Infill;
-  return fallback;
+  return has("WALL") || has("erimeter") ? Feature::Wall : Feature::Infill;
 }
 
 class Reader {
  public:
-  explicit Reader(std::string_view text) : text_(text) {
+  Reader(std::string_view text, const PenReading& pen) : text_(text), pen_(pen) {
     has_markers_ = text.find(";LAYER") != std::string_view::npos;
     has_e_ = scan_has_e(text);
     out_.has_e = has_e_;
@@ -156,9 +158,11 @@ class Reader {
     if (w.bad_number) out_.issues.push_back({n, "non-finite or malformed number in '" + std::string(s) + "'"});
     if (w.count == 0) return;
     const char cmd = w.letter[0];
+    // G and M numbers are small; a huge one ("G1e12") names no command and would not fit int.
+    if (!(w.value[0] >= 0.0 && w.value[0] < kMaxCommandNumber)) return;
     const int code = static_cast<int>(w.value[0]);
     if (cmd == 'G') g_code(code, w, n);
-    if (cmd == 'M') m_code(code);
+    if (cmd == 'M') m_code(code, w, n);
   }
 
   void comment(std::string_view c, int) {
@@ -177,7 +181,7 @@ class Reader {
       std::from_chars(c.data() + 7, c.data() + c.size(), h);
       out_.program.layers.back().height_mm = h;
     } else if (starts_with(c, "TYPE:")) {
-      feature_ = feature_from_role(c.substr(5), feature_);
+      feature_ = feature_from_role(c.substr(5));
     } else if (starts_with(c, "FEATURE:")) {
       feature_ = feature_from_comment(trim(c.substr(8)), feature_);
     } else if (starts_with(c, "WIDTH:")) {
@@ -192,9 +196,23 @@ class Reader {
     marker_pending_ = true;
   }
 
-  void m_code(int code) {
+  void m_code(int code, const Words& w, int n) {
     if (code == 82) relative_e_ = false;
     if (code == 83) relative_e_ = true;
+    if (has_e_) return;  // an extruder's M300 is a beep, its M3 a spindle or laser
+    const std::optional<bool> down = pen_down_by_command(pen_, code, w.get('S'), w.get('P'));
+    if (!down) return;
+    if (out_.pen_commands++ == 0) out_.notes.push_back({n, pen_convention(pen_, code)});
+    out_.pen_servo = out_.pen_servo || code == 300 || code == 280;
+    pen_down_ = *down;
+  }
+
+  // Without E a G1/G2/G3 in XY draws, unless the file lifts its pen: by command, or by z
+  // above the pen-down height when the reading gives one.
+  bool draws(int code, const Vec3& target) const {
+    if (code == 0 || (target.head<2>() - pos_.head<2>()).norm() == 0.0) return false;
+    if (pen_down_) return *pen_down_;
+    return !pen_.z_down_max_mm || target.z() <= *pen_.z_down_max_mm;
   }
 
   void g_code(int code, const Words& w, int n) {
@@ -203,7 +221,8 @@ class Reader {
       case 4: dwell(w, n); break;
       case 20:
         scale_ = slicer::kMmPerInch;
-        if (!out_.inches) out_.issues.push_back({n, "inch units (G20): coordinates converted to mm"});
+        if (!out_.inches)
+          out_.notes.push_back({n, "inch units (G20): coordinates converted to mm"});
         out_.inches = true;
         break;
       case 21: scale_ = 1.0; break;
@@ -251,8 +270,7 @@ class Reader {
     mv.feed_mm_per_min = feed_;
     mv.feature = feature_;
     mv.width_mm = width_;
-    const bool xy_moves = (target.head<2>() - pos_.head<2>()).norm() > 0.0;
-    mv.kind = (has_e_ ? de > 0.0 : (code != 0 && xy_moves)) ? MoveKind::Deposit : MoveKind::Travel;
+    mv.kind = (has_e_ ? de > 0.0 : draws(code, target)) ? MoveKind::Deposit : MoveKind::Travel;
     if (code == 2 || code == 3) arc(mv, code, w, n);
     if (!has_markers_ && mv.kind == MoveKind::Deposit &&
         (layer_ < 0 || std::abs(target.z() - out_.program.layers.back().z_mm) > 1e-6)) {
@@ -333,6 +351,7 @@ class Reader {
   }
 
   std::string_view text_;
+  const PenReading& pen_;
   ParsedGcode out_;
   Vec3 pos_ = Vec3::Zero();
   double e_ = 0.0;
@@ -349,11 +368,14 @@ class Reader {
   bool marker_pending_ = false;
   bool layer_z_known_ = false;  // the current layer's z came from ;Z: or a deposit
   int layer_ = -1;
+  std::optional<bool> pen_down_;  // unset until the file's first pen command
   Feature feature_ = Feature::Infill;
 };
 
 }  // namespace
 
-ParsedGcode parse_gcode(std::string_view text) { return Reader(text).run(); }
+ParsedGcode parse_gcode(std::string_view text, const PenReading& pen) {
+  return Reader(text, pen).run();
+}
 
 }  // namespace strand::post

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "postprocess/inspect/pen_reading.h"
 #include "slicer/motion.h"
 
 namespace strand::post {
@@ -26,7 +27,10 @@ struct ParseIssue {
 
 struct ParsedGcode {
   slicer::MotionProgram program;
-  std::vector<ParseIssue> issues;
+  std::vector<ParseIssue> issues;  // problems: the file is not read faithfully
+  // How the file was read where it could be read more than one way (inch units converted,
+  // which pen convention): reported, never a failure.
+  std::vector<ParseIssue> notes;
   std::vector<int> arc_lines;      // lines holding G2/G3
   std::vector<int> move_lines;     // source line of each move in program.moves
   // Rotary-axis files (A words, degrees): the A position after each move, parallel to
@@ -34,11 +38,21 @@ struct ParsedGcode {
   std::vector<double> a_deg;
   bool has_e = false;              // deposits are recognised by E when true, by G1 otherwise
   bool inches = false;
+  int pen_commands = 0;  // M300/M280/M3/M4/M5 read as pen up or down
+  // Some were M300 S or M280 S: a pen servo. M3/M5 alone may drive a pen, a laser or a
+  // GRBL machine's dispenser, so only a servo makes the file a drawing by default.
+  bool pen_servo = false;
 };
 
 // Layers come from ;LAYER:/;LAYER_CHANGE comments when present, else from z changes of
 // deposits. A deposit is a move with growing E (files with E words) or any G1/G2/G3 that
-// moves in XY (files without E, as for valve and pen machines).
-ParsedGcode parse_gcode(std::string_view text);
+// moves in XY (files without E, as for valve and pen machines) while the pen, if the file
+// lifts one (M300 S, M280 S, M3/M5 read through `pen`, or z above pen.z_down_max_mm), is down.
+ParsedGcode parse_gcode(std::string_view text, const PenReading& pen = {});
+
+// A pen drawing: as parse_gcode, and when the file lifts its pen by neither command nor the
+// profile's z, drawing moves more than kPenLiftMinMm above the lowest one are read as pen-up
+// travels (Z-lift plotters), with a note saying so.
+ParsedGcode parse_drawing(std::string_view text, const PenReading& pen);
 
 }  // namespace strand::post

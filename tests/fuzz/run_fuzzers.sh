@@ -10,7 +10,7 @@ src="$(cd "$(dirname "$0")/../.." && pwd)"
 seeds() {  # target -> seed files
   case "$1" in
     svg_fuzz) ls "$src"/samples/plot/*.svg ;;
-    gcode_fuzz) ls "$src"/tests/golden/*.gcode ;;
+    gcode_fuzz) ls "$src"/tests/golden/*.gcode "$src"/tests/fuzz/seeds/gcode_fuzz/* ;;
     json_fuzz) ls "$src"/samples/*.json "$src"/samples/sweeps/*.json "$src"/machines/profiles/*.json ;;
     where_fuzz) ;;
     curved_fuzz) ls "$src"/tests/fuzz/seeds/curved_fuzz/* ;;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "machines/gcode_format.h"
 
 namespace strand::machines {
@@ -56,7 +58,35 @@ TEST(GcodeEmitter, ExtrusionModeComesAfterG90) {
 TEST(GcodeEmitter, LayerAndFeatureCommentsForViewers) {
   const std::string g = emit_gcode(two_moves(), e_machine(false), {});
   EXPECT_NE(g.find(";LAYER_CHANGE\n;Z:0.500\n;HEIGHT:0.500\n;LAYER:0\n"), std::string::npos) << g;
-  EXPECT_NE(g.find(";TYPE:External perimeter\n;FEATURE:node\n;WIDTH:0.800\n"), std::string::npos) << g;
+  EXPECT_NE(g.find(";TYPE:Perimeter\n;FEATURE:node\n;WIDTH:0.800\n"), std::string::npos) << g;
+}
+
+TEST(GcodeEmitter, ViewerRolesArePrusaSlicerRolesAndNoneOverstates) {
+  // PrusaSlicer 2.5's extrusion roles (GCodeProcessor): an unknown name is dropped by its viewer.
+  const std::set<std::string> roles = {"Perimeter",
+                                       "External perimeter",
+                                       "Overhang perimeter",
+                                       "Internal infill",
+                                       "Solid infill",
+                                       "Top solid infill",
+                                       "Ironing",
+                                       "Bridge infill",
+                                       "Gap fill",
+                                       "Skirt/Brim",
+                                       "Support material",
+                                       "Support material interface",
+                                       "Wipe tower",
+                                       "Custom"};
+  for (int f = 0; f <= static_cast<int>(slicer::Feature::Pen); ++f) {
+    const std::string role = viewer_role(static_cast<slicer::Feature>(f));
+    EXPECT_TRUE(roles.count(role)) << role;
+    // Strand cannot know what is a top surface, an overhang or a bridge.
+    for (const char* claim : {"Top", "Overhang", "Bridge", "Support", "Custom"})
+      EXPECT_EQ(role.find(claim), std::string::npos) << role;
+  }
+  EXPECT_EQ(viewer_role(slicer::Feature::Frame), "External perimeter");  // the outer border
+  EXPECT_NE(viewer_role(slicer::Feature::Node), "External perimeter");   // inside the lattice
+  EXPECT_NE(viewer_role(slicer::Feature::Grip), viewer_role(slicer::Feature::Frame));
 }
 
 TEST(GcodeEmitter, ValveCommandsBracketDepositsWithM400) {

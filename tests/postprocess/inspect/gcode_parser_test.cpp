@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "machines/profile.h"
+
 namespace strand::post {
 namespace {
 
@@ -28,11 +30,14 @@ TEST(GcodeParser, LayerMarkersDefineLayers) {
   EXPECT_EQ(r.program.moves[1].layer, 1);
 }
 
-TEST(GcodeParser, InchesAreConvertedAndReported) {
-  const auto r = parse_gcode("G20\nG1 X1 Y0\n");
+TEST(GcodeParser, InchesAreConvertedAndNotedNotAnIssue) {
+  const auto r = parse_gcode("G20\nG1 X1 Y0\nG21\nG1 X30\n");
   EXPECT_TRUE(r.inches);
   EXPECT_DOUBLE_EQ(r.program.moves[0].end_mm.x(), 25.4);
-  EXPECT_FALSE(r.issues.empty());
+  EXPECT_DOUBLE_EQ(r.program.moves[1].end_mm.x(), 30.0);  // G21: millimetres again
+  EXPECT_TRUE(r.issues.empty());
+  ASSERT_EQ(r.notes.size(), 1u);
+  EXPECT_EQ(r.notes[0].line, 1);
 }
 
 TEST(GcodeParser, NonFiniteNumberIsAnIssue) {
@@ -74,6 +79,14 @@ TEST(GcodeParserBounds, AbsurdArcRadiiAreReadAsStraightMovesAndReported) {
   }
 }
 
+TEST(GcodeParserBounds, CommandNumbersBeyondAnyCommandAreIgnored) {
+  // Found by gcode_fuzz: the number did not fit an int (undefined behaviour).
+  const ParsedGcode p = parse_gcode("M1111111111300 S30\nG1111111111 X1\nG1e12 X2\nM-5\nG1 X3\n");
+  ASSERT_EQ(p.program.moves.size(), 1u);
+  EXPECT_EQ(p.program.moves[0].end_mm.x(), 3.0);
+  EXPECT_EQ(p.pen_commands, 0);
+}
+
 TEST(GcodeParserBounds, TheChordsOfAllArcsAreBounded) {
   // Full circles of 1 km radius need about 70,000 chords each at 0.001 mm: within the budget
   // for a few, refused after about 700.
@@ -85,6 +98,80 @@ TEST(GcodeParserBounds, TheChordsOfAllArcsAreBounded) {
   EXPECT_GT(arcs, 100u);
   EXPECT_LT(arcs, 1000u);
   EXPECT_FALSE(p.issues.empty());
+}
+
+}  // namespace
+}  // namespace strand::post
+
+namespace strand::post {
+namespace {
+
+using slicer::MoveKind;
+
+std::vector<MoveKind> kinds(const ParsedGcode& p) {
+  std::vector<MoveKind> k;
+  for (const auto& m : p.program.moves) k.push_back(m.kind);
+  return k;
+}
+
+constexpr MoveKind kInk = MoveKind::Deposit, kAir = MoveKind::Travel;
+
+TEST(GcodeParserPen, M300ByTheUnicornConventionLiftsThePenForG1Travels) {
+  const auto p = parse_gcode("M300 S50\nG1 X1\nM300 S30\nG1 X2\nM300 S50.0\nG1 X3\n");
+  EXPECT_EQ(kinds(p), (std::vector<MoveKind>{kAir, kInk, kAir}));
+  EXPECT_EQ(p.pen_commands, 3);
+  ASSERT_EQ(p.notes.size(), 1u);
+  EXPECT_NE(p.notes[0].what.find("Unicorn"), std::string::npos) << p.notes[0].what;
+}
+
+TEST(GcodeParserPen, AMarlinBeepOrAnotherServoSaysNothingAboutThePen) {
+  EXPECT_EQ(kinds(parse_gcode("M300 S50\nM300 S30 P200\nG1 X1\n")), (std::vector<MoveKind>{kAir}));
+  const auto servo = machines::load_profile("xy-plotter-servo");
+  const auto p =
+      parse_gcode("M280 P0 S90\nM280 P1 S30\nG1 X1\nM280 P0 S30\nG1 X2\n", pen_reading_from(servo));
+  EXPECT_EQ(kinds(p), (std::vector<MoveKind>{kAir, kInk}));
+  EXPECT_NE(p.notes[0].what.find("xy-plotter-servo"), std::string::npos) << p.notes[0].what;
+}
+
+TEST(GcodeParserPen, ProfileValuesOverrideTheConvention) {
+  PenReading r;  // a servo mounted the other way round: 120 down, 20 up
+  r.down_value = 120;
+  r.up_value = 20;
+  EXPECT_EQ(kinds(parse_gcode("M280 S20\nG1 X1\nM280 S120\nG1 X2\n", r)),
+            (std::vector<MoveKind>{kAir, kInk}));
+  EXPECT_EQ(kinds(parse_gcode("M280 S20\nG1 X1\nM280 S120\nG1 X2\n")),
+            (std::vector<MoveKind>{kInk, kAir}));  // Makelangelo's convention: small is down
+}
+
+TEST(GcodeParserPen, GrblSpindleM3DownM5Up) {
+  EXPECT_EQ(kinds(parse_gcode("M5\nG1 X1\nM3 S1000\nG1 X2\nM3 S0\nG1 X3\nM3\nG1 X4\n")),
+            (std::vector<MoveKind>{kAir, kInk, kAir, kInk}));
+}
+
+TEST(GcodeParserPen, GrblServoProfileReadsItsSpindleValues) {
+  // xy-plotter-grbl: M3 S50 up, M3 S30 down; without the profile both are "spindle on".
+  const char* g = "M3 S50\nG1 X1\nM3 S30\nG1 X2\nM5\nG1 X3\n";
+  EXPECT_EQ(kinds(parse_gcode(g, pen_reading_from(machines::load_profile("xy-plotter-grbl")))),
+            (std::vector<MoveKind>{kAir, kInk, kAir}));
+  EXPECT_EQ(kinds(parse_gcode(g)), (std::vector<MoveKind>{kInk, kInk, kAir}));
+}
+
+TEST(GcodeParserPen, FilesWithEIgnorePenCommands) {
+  EXPECT_EQ(kinds(parse_gcode("M300 S50\nG1 X1 E1\nM5\nG1 X2 E2\n")),
+            (std::vector<MoveKind>{kInk, kInk}));
+}
+
+TEST(GcodeParserPen, ZLiftDrawingsReadFromTheFileOrTheProfile) {
+  const char* g = "G0 Z2\nG1 X1\nG1 Z0\nG1 X2\nG1 Y2\nG0 Z2\nG1 X0 Y0\n";
+  EXPECT_EQ(kinds(parse_gcode(g)),
+            (std::vector<MoveKind>{kAir, kInk, kAir, kInk, kInk, kAir, kInk}));
+  const auto drawing = parse_drawing(g, {});
+  EXPECT_EQ(kinds(drawing), (std::vector<MoveKind>{kAir, kAir, kAir, kInk, kInk, kAir, kAir}));
+  ASSERT_EQ(drawing.notes.size(), 1u);
+  EXPECT_NE(drawing.notes[0].what.find("above z 0.2 mm"), std::string::npos)
+      << drawing.notes[0].what;
+  const auto z = machines::load_profile("xy-plotter-z");
+  EXPECT_EQ(kinds(parse_drawing(g, pen_reading_from(z))), kinds(drawing));
 }
 
 }  // namespace

@@ -1,0 +1,105 @@
+// Pen up/down from plotter commands: the profile's servo values when given, else the
+// conventions of the programs that write these files; Z-lift drawings read by their heights
+// (parse_drawing, declared in gcode_parser.h).
+#include "postprocess/inspect/pen_reading.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "postprocess/inspect/gcode_parser.h"
+#include "slicer/params.h"
+
+namespace strand::post {
+
+namespace {
+
+// Without a profile. M300 S: the MakerBot Unicorn convention (Inkscape's Unicorn extension
+// and the Arduino plotters that read it): S30 or S40 down, S50 up. M280 S: Makelangelo's
+// Marlin polargraph, S40 down and S90 up (Strand's own plotters: S30 and S90).
+constexpr double kM300DownBelow = 45.0;
+constexpr double kM280DownBelow = 65.0;
+
+bool nearer_down(const PenReading& r, double s) {
+  return std::abs(s - *r.down_value) < std::abs(s - *r.up_value);
+}
+
+bool from_profile(const PenReading& r) { return r.down_value && r.up_value; }
+
+}  // namespace
+
+PenReading pen_reading_from(const machines::MachineProfile& m) {
+  PenReading r;
+  if (!m.plotter.enabled) return r;
+  const machines::PenSetup& pen = m.plotter.pen;
+  r.machine = m.name;
+  if (pen.lift == machines::PenLift::Servo) {
+    r.down_value = pen.down_value;
+    r.up_value = pen.up_value;
+    if (m.firmware != machines::Firmware::Grbl) r.servo_index = pen.servo_index;
+  } else if (pen.lift == machines::PenLift::Z) {
+    r.z_down_max_mm = (pen.z_down_mm + pen.z_up_mm) / 2.0;
+  }
+  return r;
+}
+
+std::optional<bool> pen_down_by_command(const PenReading& r, int m, std::optional<double> s,
+                                        std::optional<double> p) {
+  switch (m) {
+    case 300:  // Marlin's M300 S<frequency> P<duration> is a beep; plotters send M300 S alone
+      if (!s || p) return std::nullopt;
+      return from_profile(r) ? nearer_down(r, *s) : *s < kM300DownBelow;
+    case 280:
+      if (!s) return std::nullopt;
+      if (r.servo_index >= 0 && p && *p != r.servo_index) return std::nullopt;
+      return from_profile(r) ? nearer_down(r, *s) : *s < kM280DownBelow;
+    case 3:
+    case 4:  // GRBL spindle (or laser) output driving the pen: on is down, S0 is off
+      if (from_profile(r) && s) return nearer_down(r, *s);
+      return !s || *s != 0.0;
+    case 5:
+      return false;
+    default:
+      return std::nullopt;
+  }
+}
+
+std::string pen_convention(const PenReading& r, int m) {
+  const std::string command = m == 300 ? "M300 S" : m == 280 ? "M280 S" : "M3/M5";
+  if (from_profile(r)) {
+    return "pen read from " + command + " with machine " + r.machine + "'s values (down " +
+           slicer::short_number(*r.down_value) + ", up " + slicer::short_number(*r.up_value) + ")";
+  }
+  switch (m) {
+    case 300:
+      return "pen read from M300 S by the Unicorn plotter convention (S30 or S40 down, S50 up; "
+             "below 45 is down): give --machine for other values";
+    case 280:
+      return "pen read from M280 S by Makelangelo's convention (S40 down, S90 up; below 65 is "
+             "down): give --machine for other values";
+    default:
+      return "pen read from M3/M5 as a GRBL spindle: M3 down, M5 or M3 S0 up";
+  }
+}
+
+ParsedGcode parse_drawing(std::string_view text, const PenReading& pen) {
+  ParsedGcode first = parse_gcode(text, pen);
+  if (first.has_e || first.pen_commands > 0 || pen.z_down_max_mm) return first;
+  double low = std::numeric_limits<double>::infinity(), high = -low;
+  for (const slicer::Move& m : first.program.moves) {
+    if (m.kind != slicer::MoveKind::Deposit) continue;
+    low = std::min(low, m.end_mm.z());
+    high = std::max(high, m.end_mm.z());
+  }
+  if (!(high - low > kPenLiftMinMm)) return first;  // one drawing height: nothing to lift
+  PenReading by_z = pen;
+  by_z.z_down_max_mm = low + kPenLiftMinMm;
+  ParsedGcode second = parse_gcode(text, by_z);
+  second.notes.push_back({0, "pen read from Z: drawing moves above z " +
+                                 slicer::short_number(*by_z.z_down_max_mm) +
+                                 " mm (the lowest drawing z + " +
+                                 slicer::short_number(kPenLiftMinMm) + " mm) are pen-up travels"});
+  return second;
+}
+
+}  // namespace strand::post
