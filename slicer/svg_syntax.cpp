@@ -89,6 +89,14 @@ int arg_count(char upper) {
 // State of the path interpreter: current point, sub-path start, last control points.
 struct PathBuilder {
   std::vector<SubPath> out;
+  std::size_t max_pieces = 0;
+  std::size_t pieces = 0;  // pieces and sub-paths stored so far
+
+  void count() {
+    if (++pieces > max_pieces) {
+      throw InputError("path data has more than " + std::to_string(max_pieces) + " curve pieces");
+    }
+  }
   Vec2 cur = Vec2::Zero();
   Vec2 last_cubic_ctrl = Vec2::Zero();
   Vec2 last_quad_ctrl = Vec2::Zero();
@@ -97,20 +105,27 @@ struct PathBuilder {
   SubPath& current() {
     if (out.empty() || out.back().closed) {
       const Vec2 start = out.empty() ? Vec2::Zero() : out.back().start;
+      count();
       out.push_back({start, {}, false});
     }
     return out.back();
   }
   void move_to(const Vec2& p) {
     if (!out.empty() && out.back().pieces.empty()) out.pop_back();
+    count();
     out.push_back({p, {}, false});
     cur = p;
   }
   void line_to(const Vec2& p) {
     CurvePiece c;
     c.p[0] = p;
-    current().pieces.push_back(c);
+    add(c);
     cur = p;
+  }
+  void add(const CurvePiece& c) {
+    SubPath& s = current();
+    count();
+    s.pieces.push_back(c);
   }
   void cubic_to(const Vec2& c1, const Vec2& c2, const Vec2& p) {
     CurvePiece c;
@@ -118,7 +133,7 @@ struct PathBuilder {
     c.p[0] = c1;
     c.p[1] = c2;
     c.p[2] = p;
-    current().pieces.push_back(c);
+    add(c);
     last_cubic_ctrl = c2;
     cur = p;
   }
@@ -153,7 +168,7 @@ struct PathBuilder {
       case 'A': {
         const Vec2 to = pt(5);
         if ((to - cur).norm() == 0.0) break;  // SVG: an arc to the current point is omitted
-        current().pieces.push_back(arc_piece(cur, a[0], a[1], a[2], a[3] != 0, a[4] != 0, to));
+        add(arc_piece(cur, a[0], a[1], a[2], a[3] != 0, a[4] != 0, to));
         cur = to;
         break;
       }
@@ -219,9 +234,10 @@ CurvePiece arc_piece(const Vec2& from, double rx, double ry, double phi_deg, boo
   return arc;
 }
 
-std::vector<SubPath> parse_path_data(std::string_view d, std::string* error) {
+std::vector<SubPath> parse_path_data(std::string_view d, std::string* error, std::size_t max_pieces) {
   Scanner sc(d);
   PathBuilder b;
+  b.max_pieces = max_pieces;
   char cmd = '\0';
   double a[7];
   while (!sc.done()) {
@@ -305,10 +321,14 @@ Affine parse_transform(std::string_view text) {
   return total;
 }
 
-std::vector<double> parse_number_list(std::string_view text) {
+std::vector<double> parse_number_list(std::string_view text, std::size_t max_count) {
   Scanner sc(text);
   std::vector<double> out;
   while (!sc.done()) {
+    if (out.size() >= max_count) {
+      throw InputError("points = \"" + std::string(text.substr(0, 40)) + "...\": more than " +
+                       std::to_string(max_count) + " numbers");
+    }
     const auto v = sc.number();
     if (!v) throw InputError("points = \"" + std::string(text.substr(0, 40)) + "\": not a list of numbers");
     out.push_back(*v);

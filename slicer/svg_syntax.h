@@ -3,6 +3,8 @@
 // InputError naming the attribute and the offending text.
 #pragma once
 
+#include <cstddef>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,14 +17,17 @@ namespace strand::slicer {
 // command (M L H V C S Q T A Z), absolute and relative, implicit repeats, compact numbers
 // ("1.5.5", "-1-2", "1e-3") and packed arc flags ("a1 1 0 00 10 10"). Quadratics become
 // exact cubics; arcs keep their centre form. A syntax error keeps the pieces read so far
-// (SVG's error rule) and is reported through `error` when non-null.
-std::vector<SubPath> parse_path_data(std::string_view d, std::string* error = nullptr);
+// (SVG's error rule) and is reported through `error` when non-null. More than `max_pieces`
+// pieces and sub-paths together throw InputError before the next one is stored.
+std::vector<SubPath> parse_path_data(std::string_view d, std::string* error = nullptr,
+                                     std::size_t max_pieces = std::numeric_limits<std::size_t>::max());
 
 // transform="matrix(...) translate(...) scale(...) rotate(a cx cy) skewX(...) skewY(...)".
 Affine parse_transform(std::string_view text);
 
-// "10,20 30 40" -> {10, 20, 30, 40}.
-std::vector<double> parse_number_list(std::string_view text);
+// "10,20 30 40" -> {10, 20, 30, 40}. More than `max_count` numbers throw InputError.
+std::vector<double> parse_number_list(std::string_view text,
+                                      std::size_t max_count = std::numeric_limits<std::size_t>::max());
 
 // A length in user units (px); mm, cm, in, pt, pc, px and none are accepted at 96 px/in.
 // Percentages and other units throw InputError naming `what`.
