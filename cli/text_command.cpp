@@ -54,8 +54,8 @@ slicer::SvgText text_element(const std::string& text, const nlohmann::json& v) {
   for (std::size_t at = s.find("\\n"); at != std::string::npos; at = s.find("\\n", at + 1)) s.replace(at, 2, "\n");
   const std::u32string chars = slicer::utf8_to_u32(s);
   if (chars.size() > slicer::kMaxSvgTextChars) {
-    throw InputError("text: the string has " + std::to_string(chars.size()) + " characters (at most " +
-                     std::to_string(slicer::kMaxSvgTextChars) + ")");
+    throw InputError("text: the string has " + std::to_string(chars.size()) +
+                     " characters (at most " + std::to_string(slicer::kMaxSvgTextChars) + ")");
   }
   bool line_start = true;
   int line = 0;

@@ -164,11 +164,15 @@ double flatten_point_bound(const SubPath& s, double tolerance_mm) {
   Vec2 from = s.start;
   for (const auto& piece : s.pieces) {
     switch (piece.kind) {
-      case CurveKind::Line: n += 1.0; break;
+      case CurveKind::Line:
+        n += 1.0;
+        break;
       case CurveKind::Cubic:
         n += std::ldexp(1.0, cubic_depth({from, piece.p[0], piece.p[1], piece.p[2]}, tolerance_mm));
         break;
-      case CurveKind::Arc: n += arc_steps(piece, tolerance_mm); break;
+      case CurveKind::Arc:
+        n += arc_steps(piece, tolerance_mm);
+        break;
     }
     from = piece.end();
   }
@@ -179,7 +183,8 @@ std::pair<Vec2, Vec2> curve_bounds(const SubPath& s) {
   std::pair<Vec2, Vec2> box{s.start, s.start};
   Vec2 from = s.start;
   for (const auto& piece : s.pieces) {
-    if (piece.kind == CurveKind::Cubic) cubic_extrema({from, piece.p[0], piece.p[1], piece.p[2]}, box);
+    if (piece.kind == CurveKind::Cubic)
+      cubic_extrema({from, piece.p[0], piece.p[1], piece.p[2]}, box);
     if (piece.kind == CurveKind::Arc) arc_extrema(piece, box);
     from = piece.end();
     extend(box, from);
@@ -193,9 +198,11 @@ double max_abs_coordinate(const SubPath& s) {
   for (const auto& piece : s.pieces) {
     for (int i = 0; i < 2; ++i) {
       if (piece.kind == CurveKind::Arc) {
-        take_abs(std::abs(piece.center[i]) + std::abs(piece.axes(i, 0)) + std::abs(piece.axes(i, 1)), m);
+        take_abs(
+            std::abs(piece.center[i]) + std::abs(piece.axes(i, 0)) + std::abs(piece.axes(i, 1)), m);
       } else {
-        for (int k = 0; k < (piece.kind == CurveKind::Cubic ? 3 : 1); ++k) take_abs(piece.p[k][i], m);
+        for (int k = 0; k < (piece.kind == CurveKind::Cubic ? 3 : 1); ++k)
+          take_abs(piece.p[k][i], m);
       }
     }
   }

@@ -18,9 +18,9 @@ inline constexpr std::size_t kMaxEntityExpansion = std::size_t{16} << 20;
 inline constexpr int kMaxEntityDepth = 16;
 
 struct ExpandedEntities {
-  std::string text;        // the document with every declared internal entity expanded
-  int references = 0;      // references expanded in the document (nested ones not counted)
-  int external = 0;        // references to external entities (SYSTEM/PUBLIC), left out
+  std::string text;    // the document with every declared internal entity expanded
+  int references = 0;  // references expanded in the document (nested ones not counted)
+  int external = 0;    // references to external entities (SYSTEM/PUBLIC), left out
 };
 
 // nullopt when the document declares no internal entities (the common case: no copy).

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <map>
 #include <pugixml.hpp>
@@ -78,7 +77,8 @@ std::string local_name(const pugi::xml_node& n) {
 // "<path id="leaf">" for messages (the id cut short).
 std::string describe(const pugi::xml_node& n) {
   std::string d = "<" + local_name(n);
-  if (const auto id = n.attribute("id")) d += " id=\"" + std::string(id.value()).substr(0, 40) + "\"";
+  if (const auto id = n.attribute("id"))
+    d += " id=\"" + std::string(id.value()).substr(0, 40) + "\"";
   return d + ">";
 }
 
@@ -92,9 +92,11 @@ struct Importer {
   std::vector<pugi::xml_node> uses;  // <use> targets being drawn, outermost first
   std::size_t elements = 0, attribute_bytes = 0, pieces = 0, text_chars = 0;
 
-  [[noreturn]] void over(const std::string& what, std::size_t limit, const pugi::xml_node& n) const {
+  [[noreturn]] void over(const std::string& what, std::size_t limit,
+                         const pugi::xml_node& n) const {
     throw InputError(origin + ": " + describe(n) + ": the drawing has more than " +
-                     short_number(static_cast<double>(limit)) + " " + what + " (the limit for one drawing)");
+                     short_number(static_cast<double>(limit)) + " " + what +
+                     " (the limit for one drawing)");
   }
   bool enter(const pugi::xml_node& n, const Context& parent, Context& c);
   bool inherit(const pugi::xml_node& n, Context& c);
@@ -107,16 +109,19 @@ struct Importer {
   void walk_switch(const pugi::xml_node& n, const Context& c);
   void use(const pugi::xml_node& n, Context c);
   void viewport(const pugi::xml_node& n, Context c, const Vec2& size);
-  bool geometry(const pugi::xml_node& n, const std::string& name, const Context& c, std::vector<SubPath>& paths);
+  bool geometry(const pugi::xml_node& n, const std::string& name, const Context& c,
+                std::vector<SubPath>& paths);
   void shape(const pugi::xml_node& n, const Context& c, std::vector<SubPath> paths);
   void text(const pugi::xml_node& n, const TextStyle& parent_text, const Context& c);
   // A length in user units; "P%" is P percent of `percent_of`.
-  double len(const pugi::xml_node& n, const char* attr, double percent_of, double fallback = 0.0) const {
+  double len(const pugi::xml_node& n, const char* attr, double percent_of,
+             double fallback = 0.0) const {
     const auto a = n.attribute(attr);
     if (!a) return fallback;
     const std::string v = trim(a.value());
     const std::string what = origin + ": " + describe(n) + " " + attr;
-    if (!v.empty() && v.back() == '%') return parse_length_px(v.substr(0, v.size() - 1), what) * percent_of / 100.0;
+    if (!v.empty() && v.back() == '%')
+      return parse_length_px(v.substr(0, v.size() - 1), what) * percent_of / 100.0;
     return parse_length_px(v, what);
   }
 };
@@ -127,12 +132,13 @@ bool Importer::enter(const pugi::xml_node& n, const Context& parent, Context& c)
   c = parent;
   c.depth = parent.depth + 1;
   if (c.depth > kMaxSvgDepth) {
-    throw InputError(origin + ": " + describe(n) + ": elements nest deeper than " + std::to_string(kMaxSvgDepth) +
-                     " levels (each <use> counts as one)");
+    throw InputError(origin + ": " + describe(n) + ": elements nest deeper than " +
+                     std::to_string(kMaxSvgDepth) + " levels (each <use> counts as one)");
   }
   if (++elements > kMaxSvgElements) over("elements (each <use> copy counted)", kMaxSvgElements, n);
   for (const auto& a : n.attributes()) attribute_bytes += std::strlen(a.value());
-  if (attribute_bytes > kMaxSvgAttributeBytes) over("bytes of attributes (each <use> copy counted)", kMaxSvgAttributeBytes, n);
+  if (attribute_bytes > kMaxSvgAttributeBytes)
+    over("bytes of attributes (each <use> copy counted)", kMaxSvgAttributeBytes, n);
   return inherit(n, c);
 }
 
@@ -146,7 +152,8 @@ bool Importer::inherit(const pugi::xml_node& n, Context& c) {
   inherit_text_style(props, c.style.text, origin);
   for (const char* ignored : {"clip-path", "mask", "marker-start", "marker-mid", "marker-end"}) {
     const auto p = props.find(ignored);
-    if (p != props.end() && p->second != "none") ++skipped[std::string(ignored).substr(0, 6) == "marker" ? "marker" : ignored];
+    if (p != props.end() && p->second != "none")
+      ++skipped[std::string(ignored).substr(0, 6) == "marker" ? "marker" : ignored];
   }
   if (const auto t = n.attribute("transform")) {
     try {
@@ -171,7 +178,9 @@ void Importer::walk(const pugi::xml_node& n, const Context& parent) {
   } else if (name == "switch") {
     walk_switch(n, c);
   } else if (name == "svg") {  // nested viewport: width and height default to 100%
-    viewport(n, c, Vec2(len(n, "width", c.viewport.x(), c.viewport.x()), len(n, "height", c.viewport.y(), c.viewport.y())));
+    viewport(n, c,
+             Vec2(len(n, "width", c.viewport.x(), c.viewport.x()),
+                  len(n, "height", c.viewport.y(), c.viewport.y())));
   } else if (name == "use") {
     use(n, c);
   } else if (name == "image" || name == "foreignObject") {
@@ -203,8 +212,10 @@ void Importer::use(const pugi::xml_node& n, Context c) {
   const std::string what = origin + ": <use href=\"" + href.substr(0, 40) + "\">";
   if (found == by_id.end()) throw InputError(what + ": no element with that id");
   const pugi::xml_node target = found->second;
-  if (std::find(uses.begin(), uses.end(), target) != uses.end()) throw InputError(what + ": references form a cycle");
-  c.to_mm = compose(c.to_mm, translation(Vec2(len(n, "x", c.viewport.x()), len(n, "y", c.viewport.y()))));
+  if (std::find(uses.begin(), uses.end(), target) != uses.end())
+    throw InputError(what + ": references form a cycle");
+  c.to_mm =
+      compose(c.to_mm, translation(Vec2(len(n, "x", c.viewport.x()), len(n, "y", c.viewport.y()))));
   uses.push_back(target);
   const std::string kind = local_name(target);
   if (kind == "symbol" || kind == "svg") {
@@ -212,7 +223,8 @@ void Importer::use(const pugi::xml_node& n, Context c) {
       return n.attribute(attr) ? len(n, attr, full) : len(target, attr, full, full);
     };
     Context t;
-    if (enter(target, c, t)) viewport(target, t, Vec2(size("width", c.viewport.x()), size("height", c.viewport.y())));
+    if (enter(target, c, t))
+      viewport(target, t, Vec2(size("width", c.viewport.x()), size("height", c.viewport.y())));
   } else {
     walk(target, c);
   }
@@ -223,7 +235,8 @@ void Importer::use(const pugi::xml_node& n, Context c) {
 void Importer::viewport(const pugi::xml_node& n, Context c, const Vec2& size) {
   if (!(size.x() > 0) || !(size.y() > 0)) return;  // SVG: a zero-sized viewport draws nothing
   if (local_name(n) == "svg") {
-    c.to_mm = compose(c.to_mm, translation(Vec2(len(n, "x", c.viewport.x()), len(n, "y", c.viewport.y()))));
+    c.to_mm = compose(c.to_mm,
+                      translation(Vec2(len(n, "x", c.viewport.x()), len(n, "y", c.viewport.y()))));
   }
   c.to_mm = compose(c.to_mm, viewport_transform(n, size.x(), size.y(), origin));
   c.viewport = view_box_size(n, origin).value_or(size);
@@ -251,19 +264,24 @@ bool Importer::geometry(const pugi::xml_node& n, const std::string& name, const 
     if (has_rx && !has_ry) ry = rx;
     if (has_ry && !has_rx) rx = ry;
     const double w = len(n, "width", vp.x()), h = len(n, "height", vp.y());
-    if (w > 0 && h > 0) paths.push_back(rect_path(len(n, "x", vp.x()), len(n, "y", vp.y()), w, h, rx, ry));
+    if (w > 0 && h > 0)
+      paths.push_back(rect_path(len(n, "x", vp.x()), len(n, "y", vp.y()), w, h, rx, ry));
   } else if (name == "circle" || name == "ellipse") {
     const double rx = name == "circle" ? len(n, "r", diagonal) : len(n, "rx", vp.x());
     const double ry = name == "circle" ? rx : len(n, "ry", vp.y());
-    if (rx > 0 && ry > 0) paths.push_back(ellipse_path(Vec2(len(n, "cx", vp.x()), len(n, "cy", vp.y())), rx, ry));
+    if (rx > 0 && ry > 0)
+      paths.push_back(ellipse_path(Vec2(len(n, "cx", vp.x()), len(n, "cy", vp.y())), rx, ry));
   } else if (name == "line") {
-    paths.push_back(polyline_path({len(n, "x1", vp.x()), len(n, "y1", vp.y()), len(n, "x2", vp.x()), len(n, "y2", vp.y())}, false));
+    paths.push_back(polyline_path(
+        {len(n, "x1", vp.x()), len(n, "y1", vp.y()), len(n, "x2", vp.x()), len(n, "y2", vp.y())},
+        false));
   } else if (name == "polyline" || name == "polygon") {
     std::vector<double> v;
     try {
       v = parse_number_list(n.attribute("points").value(), 2 * room + 2);
     } catch (const InputError& e) {
-      if (std::string(e.what()).find("more than") == std::string::npos) throw InputError(origin + ": " + describe(n) + " " + e.what());
+      if (std::string(e.what()).find("more than") == std::string::npos)
+        throw InputError(origin + ": " + describe(n) + " " + e.what());
       over("curve pieces", kMaxSvgPieces, n);
     }
     if (v.size() % 2) v.pop_back();  // SVG: an odd coordinate is an error; draw what is whole
@@ -295,7 +313,8 @@ void Importer::shape(const pugi::xml_node& n, const Context& c, std::vector<SubP
     if (!(m <= kMaxCoordinateMm)) {
       throw InputError(origin + ": " + describe(n) + ": a coordinate is " +
                        (std::isfinite(m) ? short_number(m) + " mm" : std::string("not finite")) +
-                       " after transforms (at most " + short_number(kMaxCoordinateMm) + " mm from the origin)");
+                       " after transforms (at most " + short_number(kMaxCoordinateMm) +
+                       " mm from the origin)");
     }
     s.paths.push_back(std::move(t));
   }
@@ -352,43 +371,13 @@ pugi::xml_document parse(std::string_view text, const std::string& origin) {
 
 }  // namespace
 
-std::string normalise_color(std::string_view text) {
-  static const std::map<std::string, std::string> kNamed = {
-      {"black", "#000000"}, {"white", "#ffffff"}, {"red", "#ff0000"}, {"green", "#008000"},
-      {"lime", "#00ff00"},  {"blue", "#0000ff"},  {"yellow", "#ffff00"}, {"cyan", "#00ffff"},
-      {"magenta", "#ff00ff"}, {"orange", "#ffa500"}, {"purple", "#800080"}, {"gray", "#808080"},
-      {"grey", "#808080"}, {"brown", "#a52a2a"}, {"navy", "#000080"}, {"pink", "#ffc0cb"}};
-  std::string s = trim(text);
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  if (kNamed.count(s)) return kNamed.at(s);
-  const auto hex = [](const std::string& h) {
-    return std::all_of(h.begin(), h.end(), [](unsigned char ch) { return std::isxdigit(ch); });
-  };
-  if (s.size() == 4 && s[0] == '#' && hex(s.substr(1))) {
-    return std::string("#") + s[1] + s[1] + s[2] + s[2] + s[3] + s[3];
-  }
-  if (s.rfind("rgb(", 0) == 0 && s.back() == ')') {
-    std::vector<double> v;
-    try {
-      v = parse_number_list(s.substr(4, s.size() - 5), 3);
-    } catch (const InputError&) {
-      return s;  // rgb() with percentages or too many numbers: kept as text
-    }
-    if (v.size() == 3) {
-      char buf[8];
-      const auto ch = [](double x) { return static_cast<int>(std::clamp(x, 0.0, 255.0)); };
-      std::snprintf(buf, sizeof buf, "#%02x%02x%02x", ch(v[0]), ch(v[1]), ch(v[2]));
-      return buf;
-    }
-  }
-  return s;
-}
-
 SvgDrawing import_svg(std::string_view text, const std::string& origin) {
   const std::optional<ExpandedEntities> expanded = expand_entities(text, origin);
   pugi::xml_document doc = parse(expanded ? std::string_view(expanded->text) : text, origin);
   const pugi::xml_node root = doc.document_element();
-  if (local_name(root) != "svg") throw InputError(origin + ": the root element is <" + std::string(root.name()).substr(0, 40) + ">, not <svg>");
+  if (local_name(root) != "svg")
+    throw InputError(origin + ": the root element is <" + std::string(root.name()).substr(0, 40) +
+                     ">, not <svg>");
   Importer im;
   im.origin = origin;
   IdIndex index;

@@ -59,7 +59,4 @@ struct SvgDrawing {
 // entities and ignored clip paths, masks and markers are counted in `skipped`.
 SvgDrawing import_svg(std::string_view text, const std::string& origin);
 
-// "#F00", "red", "rgb(255,0,0)" -> "#ff0000"; anything else lower-cased as is.
-std::string normalise_color(std::string_view text);
-
 }  // namespace strand::slicer

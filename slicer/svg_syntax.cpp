@@ -1,9 +1,13 @@
-// Recursive-descent parsers for SVG path data, transform lists, number lists and lengths.
+// Recursive-descent parsers for SVG path data, transform lists, number lists, lengths and
+// colours.
 #include "slicer/svg_syntax.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <optional>
 
 #include "slicer/input_error.h"
@@ -234,7 +238,8 @@ CurvePiece arc_piece(const Vec2& from, double rx, double ry, double phi_deg, boo
   return arc;
 }
 
-std::vector<SubPath> parse_path_data(std::string_view d, std::string* error, std::size_t max_pieces) {
+std::vector<SubPath> parse_path_data(std::string_view d, std::string* error,
+                                     std::size_t max_pieces) {
   Scanner sc(d);
   PathBuilder b;
   b.max_pieces = max_pieces;
@@ -352,6 +357,40 @@ double parse_length_px(std::string_view text, const std::string& what) {
   if (unit == "pc") return *v * in / 6.0;
   throw InputError(what + " = \"" + std::string(text) + "\": unknown unit '" + unit +
                    "' (use px, mm, cm, in, pt or pc)");
+}
+
+std::string normalise_color(std::string_view text) {
+  static const std::map<std::string, std::string> kNamed = {
+      {"black", "#000000"}, {"white", "#ffffff"}, {"red", "#ff0000"}, {"green", "#008000"},
+      {"lime", "#00ff00"},  {"blue", "#0000ff"},  {"yellow", "#ffff00"}, {"cyan", "#00ffff"},
+      {"magenta", "#ff00ff"}, {"orange", "#ffa500"}, {"purple", "#800080"}, {"gray", "#808080"},
+      {"grey", "#808080"}, {"brown", "#a52a2a"}, {"navy", "#000080"}, {"pink", "#ffc0cb"}};
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  std::string s(text);
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (kNamed.count(s)) return kNamed.at(s);
+  const auto hex = [](const std::string& h) {
+    return std::all_of(h.begin(), h.end(), [](unsigned char ch) { return std::isxdigit(ch); });
+  };
+  if (s.size() == 4 && s[0] == '#' && hex(s.substr(1))) {
+    return std::string("#") + s[1] + s[1] + s[2] + s[2] + s[3] + s[3];
+  }
+  if (s.rfind("rgb(", 0) == 0 && s.back() == ')') {
+    std::vector<double> v;
+    try {
+      v = parse_number_list(s.substr(4, s.size() - 5), 3);
+    } catch (const InputError&) {
+      return s;  // rgb() with percentages or too many numbers: kept as text
+    }
+    if (v.size() == 3) {
+      char buf[8];
+      const auto ch = [](double x) { return static_cast<int>(std::clamp(x, 0.0, 255.0)); };
+      std::snprintf(buf, sizeof buf, "#%02x%02x%02x", ch(v[0]), ch(v[1]), ch(v[2]));
+      return buf;
+    }
+  }
+  return s;
 }
 
 }  // namespace strand::slicer

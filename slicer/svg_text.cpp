@@ -78,11 +78,12 @@ struct Reader {
     const auto* data = reinterpret_cast<const FcChar8*>(bytes.data());
     for (std::size_t i = 0; i < bytes.size();) {
       if (raw.size() >= max_chars) {
-        throw InputError(origin + ": the drawing's text has more than " + std::to_string(max_chars) +
-                         " characters");
+        throw InputError(origin + ": the drawing's text has more than " +
+                         std::to_string(max_chars) + " characters");
       }
       FcChar32 c = 0;
-      const int used = FcUtf8ToUcs4(data + i, &c, static_cast<int>(std::min<std::size_t>(bytes.size() - i, 8)));
+      const int used =
+          FcUtf8ToUcs4(data + i, &c, static_cast<int>(std::min<std::size_t>(bytes.size() - i, 8)));
       raw.push_back({used > 0 ? static_cast<char32_t>(c) : U'\uFFFD', owner});
       i += used > 0 ? static_cast<std::size_t>(used) : 1;
     }

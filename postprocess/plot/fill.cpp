@@ -25,8 +25,10 @@ constexpr double kRingCleanMm = 0.001;
 // Clipper throws on coordinates past its range (about 4.6e14 mm at this scale) and llround
 // is undefined past 9.2e14 mm: far-off points are refused first.
 ClipperLib::IntPoint to_int(const slicer::Vec2& p) {
-  if (!(std::abs(p.x()) <= slicer::kMaxCoordinateMm) || !(std::abs(p.y()) <= slicer::kMaxCoordinateMm)) {
-    throw InputError("fill: a point is " + slicer::short_number(p.cwiseAbs().maxCoeff()) + " mm from the origin (at most " +
+  if (!(std::abs(p.x()) <= slicer::kMaxCoordinateMm) ||
+      !(std::abs(p.y()) <= slicer::kMaxCoordinateMm)) {
+    throw InputError("fill: a point is " + slicer::short_number(p.cwiseAbs().maxCoeff()) +
+                     " mm from the origin (at most " +
                      slicer::short_number(slicer::kMaxCoordinateMm) + " mm)");
   }
   return {static_cast<ClipperLib::cInt>(std::llround(p.x() * kUnitsPerMm)),

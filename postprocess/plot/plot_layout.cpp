@@ -8,6 +8,7 @@
 #include "postprocess/plot/fill.h"
 #include "slicer/input_error.h"
 #include "slicer/params.h"
+#include "slicer/svg_syntax.h"
 
 namespace strand::post {
 
@@ -104,10 +105,11 @@ Affine placement(const slicer::SvgDrawing& d, const machines::MachineProfile& m,
     if (size.y() > 0) s = std::min(s, o.fit_mm->y() / size.y());
     if (!std::isfinite(s)) s = 1.0;
     if (s > kMaxFitScale) {
-      throw InputError("plot.fit = " + slicer::short_number(o.fit_mm->x()) + "x" + slicer::short_number(o.fit_mm->y()) +
-                       ": the drawing is only " + slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) +
-                       " mm; fitting it would scale it " + slicer::short_number(s) + " times (at most " +
-                       slicer::short_number(kMaxFitScale) + ")");
+      throw InputError("plot.fit = " + slicer::short_number(o.fit_mm->x()) + "x" +
+                       slicer::short_number(o.fit_mm->y()) + ": the drawing is only " +
+                       slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) +
+                       " mm; fitting it would scale it " + slicer::short_number(s) +
+                       " times (at most " + slicer::short_number(kMaxFitScale) + ")");
     }
   }
   const auto [alo, ahi] = machines::drawable_area(m.plotter);
@@ -135,12 +137,13 @@ std::string point_text(const Vec2& p) {
          slicer::short_number(std::round(p.y() * 1000) / 1000) + ") mm";
 }
 
-void check_reachable(const std::vector<slicer::Polyline>& lines, const machines::MachineProfile& m) {
+void check_reachable(const std::vector<slicer::Polyline>& lines,
+                     const machines::MachineProfile& m) {
   for (const auto& pl : lines) {
     for (const auto& p : pl) {
       if (const auto why = machines::unreachable_reason(m.plotter, p)) {
-        throw InputError("plot: the drawing does not fit " + m.name + ": point " + point_text(p) + ": " + *why +
-                         " (use --fit, --scale or --offset)");
+        throw InputError("plot: the drawing does not fit " + m.name + ": point " + point_text(p) +
+                         ": " + *why + " (use --fit, --scale or --offset)");
       }
     }
   }
@@ -151,18 +154,21 @@ void check_reachable(const std::vector<slicer::Polyline>& lines, const machines:
 void check_outline_budget(const slicer::SvgDrawing& d, double scale, const PlotOptions& o) {
   double points = 0.0;
   for (const auto& shape : d.shapes) {
-    for (const auto& p : shape.paths) points += slicer::flatten_point_bound(p, o.tolerance_mm * kFlattenShare / scale);
+    for (const auto& p : shape.paths)
+      points += slicer::flatten_point_bound(p, o.tolerance_mm * kFlattenShare / scale);
   }
   if (points > kMaxPlotPoints) {
-    throw InputError("plot.tolerance = " + slicer::short_number(o.tolerance_mm) + ": the curves would flatten into up to " +
-                     slicer::short_number(std::round(points)) + " points (at most " + slicer::short_number(kMaxPlotPoints) +
+    throw InputError("plot.tolerance = " + slicer::short_number(o.tolerance_mm) +
+                     ": the curves would flatten into up to " +
+                     slicer::short_number(std::round(points)) + " points (at most " +
+                     slicer::short_number(kMaxPlotPoints) +
                      "); use a larger tolerance, a smaller scale or a simpler drawing");
   }
 }
 
 std::string describe(const slicer::SvgShape& s, std::size_t index) {
-  return "<" + s.element + (s.id.empty() ? "" : " id=\"" + s.id.substr(0, 40) + "\"") + "> (shape " +
-         std::to_string(index + 1) + ")";
+  return "<" + s.element + (s.id.empty() ? "" : " id=\"" + s.id.substr(0, 40) + "\"") +
+         "> (shape " + std::to_string(index + 1) + ")";
 }
 
 // Shapes from any source (SVG, text layout, tracing) are within kMaxCoordinateMm before
@@ -172,9 +178,10 @@ void check_coordinates(const slicer::SvgDrawing& d) {
     for (const auto& p : d.shapes[i].paths) {
       const double m = slicer::max_abs_coordinate(p);
       if (!(m <= slicer::kMaxCoordinateMm)) {
-        throw InputError("plot: " + describe(d.shapes[i], i) + ": a coordinate is " +
-                         (std::isfinite(m) ? slicer::short_number(m) + " mm" : std::string("not finite")) +
-                         " from the origin (at most " + slicer::short_number(slicer::kMaxCoordinateMm) + " mm)");
+        throw InputError(
+            "plot: " + describe(d.shapes[i], i) + ": a coordinate is " +
+            (std::isfinite(m) ? slicer::short_number(m) + " mm" : std::string("not finite")) +
+            " from the origin (at most " + slicer::short_number(slicer::kMaxCoordinateMm) + " mm)");
       }
     }
   }
@@ -200,18 +207,39 @@ std::vector<slicer::Polyline> fill_lines(const std::vector<slicer::Polyline>& ou
 
 // The fills are bounded before any is computed: outline points plus every filled shape's
 // fill_point_bound stay within kMaxPlotPoints.
-void check_fill_budget(const slicer::SvgDrawing& d, const std::vector<std::vector<slicer::Polyline>>& outlines,
-                       const std::vector<int>& pens, double width_mm, const PlotOptions& o, double points) {
+void check_fill_budget(const slicer::SvgDrawing& d,
+                       const std::vector<std::vector<slicer::Polyline>>& outlines,
+                       const std::vector<int>& pens, double width_mm, const PlotOptions& o,
+                       double points) {
   for (std::size_t i = 0; i < d.shapes.size(); ++i) {
     if (!d.shapes[i].filled) continue;
     points += fill_point_bound(outlines[i], o.fill, per_pen(o.hatch_spacing_mm, pens[i], width_mm),
                                per_pen(o.hatch_angle_deg, pens[i], 45.0));
   }
   if (points > kMaxPlotPoints) {
-    throw InputError("plot.hatch-spacing: the outlines and fills would draw up to " + slicer::short_number(std::round(points)) +
-                     " points (at most " + slicer::short_number(kMaxPlotPoints) +
+    throw InputError("plot.hatch-spacing: the outlines and fills would draw up to " +
+                     slicer::short_number(std::round(points)) + " points (at most " +
+                     slicer::short_number(kMaxPlotPoints) +
                      "); use a larger --hatch-spacing, --fill outline or a smaller drawing");
   }
+}
+
+// Every shape's outlines on paper, each checked for reach before any fill is computed;
+// `points` counts them.
+std::vector<std::vector<slicer::Polyline>> placed_outlines(const slicer::SvgDrawing& d,
+                                                           const Affine& to_paper,
+                                                           const machines::MachineProfile& m,
+                                                           const PlotOptions& o, double& points) {
+  std::vector<std::vector<slicer::Polyline>> outlines(d.shapes.size());
+  for (std::size_t i = 0; i < d.shapes.size(); ++i) {
+    for (const auto& p : d.shapes[i].paths) {
+      outlines[i].push_back(
+          slicer::flatten(slicer::transformed(p, to_paper), o.tolerance_mm * kFlattenShare));
+      points += static_cast<double>(outlines[i].back().size());
+    }
+    check_reachable(outlines[i], m);
+  }
+  return outlines;
 }
 
 }  // namespace
@@ -245,16 +273,8 @@ slicer::Toolpath layout_plot(const slicer::SvgDrawing& d, const machines::Machin
   const Affine to_paper = placement(d, m, o);
   check_outline_budget(d, std::abs(to_paper.linear(0, 0)), o);
   const double width = m.plotter.pen.width_mm;
-  // Every outline flattened and checked for reach before any fill is computed.
-  std::vector<std::vector<slicer::Polyline>> outlines(d.shapes.size());
   double points = 0.0;
-  for (std::size_t i = 0; i < d.shapes.size(); ++i) {
-    for (const auto& p : d.shapes[i].paths) {
-      outlines[i].push_back(slicer::flatten(slicer::transformed(p, to_paper), o.tolerance_mm * kFlattenShare));
-      points += static_cast<double>(outlines[i].back().size());
-    }
-    check_reachable(outlines[i], m);
-  }
+  const auto outlines = placed_outlines(d, to_paper, m, o, points);
   check_fill_budget(d, outlines, pens, width, o, points);
   slicer::Toolpath t;
   t.generator = "plot";
@@ -278,7 +298,8 @@ slicer::Toolpath layout_plot(const slicer::SvgDrawing& d, const machines::Machin
     }
   }
   std::erase_if(strokes, [](const slicer::Stroke& s) { return s.segments.empty(); });
-  if (strokes.empty()) throw InputError("plot: the SVG has nothing drawable (every shape is empty after placement)");
+  if (strokes.empty())
+    throw InputError("plot: the SVG has nothing drawable (every shape is empty after placement)");
   const auto [lo, hi] = slicer::bounds(t);
   t.derived["drawing_width_mm"] = hi.x() - lo.x();
   t.derived["drawing_height_mm"] = hi.y() - lo.y();

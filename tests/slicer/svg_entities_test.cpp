@@ -11,7 +11,8 @@ namespace {
 
 std::string with_subset(const std::string& subset, const std::string& body) {
   return "<?xml version=\"1.0\"?>\n<!DOCTYPE svg PUBLIC \"-//W3C//DTD SVG 1.1//EN\" "
-         "\"http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd\" [\n" + subset + "\n]>\n" + body;
+         "\"http://www.w3.org/Graphics/SVG/1.1/DTD/svg11.dtd\" [\n" +
+         subset + "\n]>\n" + body;
 }
 
 std::string expanded_body(const std::string& subset, const std::string& body) {
@@ -24,7 +25,8 @@ std::string expanded_body(const std::string& subset, const std::string& body) {
 
 TEST(SvgEntities, DocumentsWithoutInternalEntitiesAreNotCopied) {
   EXPECT_FALSE(expand_entities("<svg xmlns=\"http://www.w3.org/2000/svg\"/>", "t"));
-  EXPECT_FALSE(expand_entities("<!DOCTYPE svg PUBLIC \"-//W3C//DTD SVG 1.1//EN\" \"x.dtd\"><svg/>", "t"));
+  EXPECT_FALSE(
+      expand_entities("<!DOCTYPE svg PUBLIC \"-//W3C//DTD SVG 1.1//EN\" \"x.dtd\"><svg/>", "t"));
   EXPECT_FALSE(expand_entities(with_subset("<!-- only a comment -->", "<svg/>"), "t"));
   // a DOCTYPE after the root element is no prolog
   EXPECT_FALSE(expand_entities("<svg/><!DOCTYPE svg [<!ENTITY a \"b\">]>", "t"));
@@ -32,20 +34,25 @@ TEST(SvgEntities, DocumentsWithoutInternalEntitiesAreNotCopied) {
 
 TEST(SvgEntities, IllustratorNamespacesExpandInAttributes) {
   const std::string subset =
-      "\t<!ENTITY ns_svg \"http://www.w3.org/2000/svg\">\n\t<!ENTITY ns_xlink \"http://www.w3.org/1999/xlink\">";
-  EXPECT_EQ(expanded_body(subset, "<svg xmlns=\"&ns_svg;\" xmlns:xlink='&ns_xlink;'/>"),
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink='http://www.w3.org/1999/xlink'/>");
+      "\t<!ENTITY ns_svg \"http://www.w3.org/2000/svg\">\n\t<!ENTITY ns_xlink "
+      "\"http://www.w3.org/1999/xlink\">";
+  EXPECT_EQ(
+      expanded_body(subset, "<svg xmlns=\"&ns_svg;\" xmlns:xlink='&ns_xlink;'/>"),
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink='http://www.w3.org/1999/xlink'/>");
 }
 
 TEST(SvgEntities, MarkupInContentNestedReferencesAndFirstDeclarationWins) {
   const std::string subset =
-      "<!ENTITY eye \"<circle r='1.5'/>\">\n<!ENTITY face '<g>&eye;&eye;</g>'>\n<!ENTITY eye \"ignored\">";
-  EXPECT_EQ(expanded_body(subset, "<svg>&face;</svg>"), "<svg><g><circle r='1.5'/><circle r='1.5'/></g></svg>");
+      "<!ENTITY eye \"<circle r='1.5'/>\">\n<!ENTITY face '<g>&eye;&eye;</g>'>\n<!ENTITY eye "
+      "\"ignored\">";
+  EXPECT_EQ(expanded_body(subset, "<svg>&face;</svg>"),
+            "<svg><g><circle r='1.5'/><circle r='1.5'/></g></svg>");
 }
 
 TEST(SvgEntities, QuotesAndAnglesAreEscapedInsideAttributeValues) {
   EXPECT_EQ(expanded_body("<!ENTITY q 'say \"hi\" <now>'>", "<svg a=\"&q;\" b='&q;'>&q;</svg>"),
-            "<svg a=\"say &quot;hi&quot; &lt;now>\" b='say &quot;hi&quot; &lt;now>'>say \"hi\" <now></svg>");
+            "<svg a=\"say &quot;hi&quot; &lt;now>\" b='say &quot;hi&quot; &lt;now>'>say \"hi\" "
+            "<now></svg>");
 }
 
 TEST(SvgEntities, CommentsCdataPredefinedAndUnknownReferencesStayAsWritten) {
@@ -56,10 +63,10 @@ TEST(SvgEntities, CommentsCdataPredefinedAndUnknownReferencesStayAsWritten) {
 }
 
 TEST(SvgEntities, ExternalAndParameterEntitiesAreNeverLoaded) {
-  const auto e = expand_entities(
-      with_subset("<!ENTITY % pe \"x\">\n%pe;\n<!ENTITY secret SYSTEM \"file:///etc/passwd\">\n<!ENTITY a \"A\">",
-                  "<svg><text>&secret;&a;</text></svg>"),
-      "t");
+  const auto e = expand_entities(with_subset("<!ENTITY % pe \"x\">\n%pe;\n<!ENTITY secret SYSTEM "
+                                             "\"file:///etc/passwd\">\n<!ENTITY a \"A\">",
+                                             "<svg><text>&secret;&a;</text></svg>"),
+                                 "t");
   ASSERT_TRUE(e);
   EXPECT_EQ(e->external, 1);
   EXPECT_EQ(e->references, 2);
@@ -77,8 +84,10 @@ TEST(SvgEntities, BillionLaughsStopsAtTheExpansionLimit) {
     expand_entities(with_subset(subset, "<svg><text>&l9;</text></svg>"), "laughs.svg");
     FAIL() << "a 3 GB expansion was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("laughs.svg: DTD entities expand to more than 16 MiB (at &l9;)"),
-              std::string::npos) << e.what();
+    EXPECT_NE(
+        std::string(e.what()).find("laughs.svg: DTD entities expand to more than 16 MiB (at &l9;)"),
+        std::string::npos)
+        << e.what();
   }
 }
 
@@ -95,10 +104,12 @@ TEST(SvgEntities, EmptyExpansionsStillCountTowardsTheLimit) {
 
 TEST(SvgEntities, CyclesAndDeepNestingAreRefused) {
   try {
-    expand_entities(with_subset("<!ENTITY a \"&b;\">\n<!ENTITY b \"x&a;\">", "<svg>&a;</svg>"), "t");
+    expand_entities(with_subset("<!ENTITY a \"&b;\">\n<!ENTITY b \"x&a;\">", "<svg>&a;</svg>"),
+                    "t");
     FAIL() << "a cycle was accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("DTD entity &a; refers to itself"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("DTD entity &a; refers to itself"), std::string::npos)
+        << e.what();
   }
   std::string subset = "<!ENTITY d0 \"x\">\n";
   for (int i = 1; i <= kMaxEntityDepth; ++i) {

@@ -156,8 +156,10 @@ TEST(SvgImport, IllustratorEntitiesDrawTheWholeDrawing) {
 }
 
 TEST(SvgImport, SwitchDrawsItsFirstChildWithoutExtensions) {
-  const auto d = import_svg(doc("<switch><g requiredExtensions=\"http://ns.adobe.com/AdobeIllustrator/10.0/\">"
-                                "<rect width=\"9\" height=\"9\"/></g><line x2=\"5\"/><circle r=\"3\"/></switch>"), "t");
+  const auto d = import_svg(
+      doc("<switch><g requiredExtensions=\"http://ns.adobe.com/AdobeIllustrator/10.0/\">"
+          "<rect width=\"9\" height=\"9\"/></g><line x2=\"5\"/><circle r=\"3\"/></switch>"),
+      "t");
   ASSERT_EQ(d.shapes.size(), 1u);
   EXPECT_EQ(d.shapes[0].element, "line");
 }
@@ -165,11 +167,13 @@ TEST(SvgImport, SwitchDrawsItsFirstChildWithoutExtensions) {
 TEST(SvgImport, IgnoredEffectsAndExternalEntitiesAreCountedAsSkipped) {
   const std::string text =
       "<!DOCTYPE svg [<!ENTITY logo SYSTEM \"logo.xml\"><!ENTITY a \"5\">]>" +
-      doc("<line x2=\"&a;\" clip-path=\"url(#c)\"/><line x2=\"5\" mask=\"url(#m)\" marker-end=\"url(#e)\"/>"
+      doc("<line x2=\"&a;\" clip-path=\"url(#c)\"/><line x2=\"5\" mask=\"url(#m)\" "
+          "marker-end=\"url(#e)\"/>"
           "<g style=\"clip-path: url(#c)\">&logo;<image href=\"x.png\"/><foreignObject/></g>");
   const auto d = import_svg(text, "t");
-  EXPECT_EQ(d.skipped, (std::vector<std::string>{"clip-path (2)", "external entity (1)", "foreignObject (1)",
-                                                 "image (1)", "marker (1)", "mask (1)"}));
+  EXPECT_EQ(d.skipped,
+            (std::vector<std::string>{"clip-path (2)", "external entity (1)", "foreignObject (1)",
+                                      "image (1)", "marker (1)", "mask (1)"}));
   ASSERT_EQ(d.shapes.size(), 2u);
   EXPECT_NEAR(flatten(d.shapes[0].paths[0], 0.01)[1].x(), 5.0, 1e-9);
 }
@@ -185,19 +189,25 @@ TEST(SvgImport, LimitsAreInputErrorsNamingTheElement) {
   };
   std::string open, close;
   for (int i = 0; i < kMaxSvgDepth; ++i) open += "<g>", close += "</g>";
-  EXPECT_EQ(message(doc(open + "<line x2=\"1\"/>" + close)), "t.svg: <line>: elements nest deeper than 256 levels");
+  EXPECT_EQ(message(doc(open + "<line x2=\"1\"/>" + close)),
+            "t.svg: <line>: elements nest deeper than 256 levels");
   EXPECT_EQ(message(doc("<line id=\"a\" x2=\"1e8\"/>")),
-            "t.svg: <line id=\"a\">: a coordinate is 1e+08 mm after transforms (at most 1e+07 mm from the origin)");
-  EXPECT_EQ(message(doc("<g id=\"a\"><use href=\"#a\"/></g>")), "t.svg: <use href=\"#a\">: references form a cycle");
+            "t.svg: <line id=\"a\">: a coordinate is 1e+08 mm after transforms (at most 1e+07 mm "
+            "from the origin)");
+  EXPECT_EQ(message(doc("<g id=\"a\"><use href=\"#a\"/></g>")),
+            "t.svg: <use href=\"#a\">: references form a cycle");
   // a cycle through a symbol, and a use nesting past the depth through a chain of uses
   EXPECT_EQ(message(doc("<symbol id=\"s\"><use href=\"#s\"/></symbol><use href=\"#s\"/>")),
             "t.svg: <use href=\"#s\">: references form a cycle");
   std::string chain = "<defs><line id=\"u0\" x2=\"1\"/>";
   for (int i = 1; i < 200; ++i) {
-    chain += "<g id=\"u" + std::to_string(i) + "\"><use href=\"#u" + std::to_string(i - 1) + "\"/></g>";
+    chain +=
+        "<g id=\"u" + std::to_string(i) + "\"><use href=\"#u" + std::to_string(i - 1) + "\"/></g>";
   }
   const std::string chained = message(doc(chain + "</defs><use href=\"#u199\"/>"));
-  EXPECT_NE(chained.find("nest deeper than 256 levels (each <use> counts as one)"), std::string::npos) << chained;
+  EXPECT_NE(chained.find("nest deeper than 256 levels (each <use> counts as one)"),
+            std::string::npos)
+      << chained;
 }
 
 TEST(SvgImport, BadInputThrowsInputError) {
