@@ -1,10 +1,13 @@
 // `strand check FILE.gcode [--machine NAME|FILE] [--json] [--svg-layer N OUT.svg]`: exit 0
-// when the file passes, 1 when it has problems, 2 for bad input.
+// when the file passes, 1 when it has problems, 2 for bad input. A pose CSV (FILE.csv, with
+// the robot cell as --machine) and rotary G-code (;ROTARY_AXIS: header) are mapped back onto
+// their cylinder (postprocess/inspect/pose_check.h).
 #include <iostream>
 #include <memory>
 
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
+#include "postprocess/inspect/pose_check.h"
 #include "postprocess/preview/preview_image.h"
 #include "cli/commands.h"
 #include "slicer/file_io.h"
@@ -24,6 +27,8 @@ struct CheckArgs {
   std::vector<std::string> svg_layer;  // {N, OUT.svg}
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
 };
+
+bool is_csv(const std::string& file) { return file.size() > 4 && file.ends_with(".csv"); }
 
 int parse_layer_index(const std::string& text, std::size_t layers, const std::string& file) {
   const std::string range =
@@ -55,6 +60,25 @@ void write_svg(const post::ParsedGcode& parsed, const post::CheckReport& report,
   slicer::write_file_atomic(a.svg_layer[1], post::render_svg(scene, o));
 }
 
+// Pose CSVs and rotary G-code: checked on their cylinder.
+int run_curved_check(const CheckArgs& a, const std::string& text,
+                     const machines::MachineProfile* machine) {
+  if (!a.svg_layer.empty())
+    throw InputError("svg-layer: only for flat G-code (a curved file has no top view of a layer)");
+  post::PoseCheckReport report;
+  if (is_csv(a.file)) {
+    if (!machine)
+      throw InputError(
+          "machine: checking a pose CSV needs --machine (the robot cell, e.g. "
+          "kuka-iiwa14-wasp-cylinder)");
+    report = post::check_pose_csv(text, a.file, *machine);
+  } else {
+    report = post::check_rotary_gcode(text, a.file, machine);
+  }
+  std::cout << (a.json ? post::to_json(report).dump(2) + "\n" : post::to_text(report));
+  return report.ok() ? 0 : 1;
+}
+
 int run_check(const CheckArgs& a) {
   if (!(a.arc_tolerance_mm >= post::kMinFlattenToleranceMm && a.arc_tolerance_mm <= 1.0)) {
     throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) +
@@ -64,6 +88,14 @@ int run_check(const CheckArgs& a) {
   std::unique_ptr<machines::MachineProfile> machine;
   if (!a.machine.empty())
     machine = std::make_unique<machines::MachineProfile>(machines::load_profile(a.machine));
+  if (is_csv(a.file) || post::is_rotary_gcode(text))
+    return run_curved_check(a, text, machine.get());
+  if (machine && machine->robot.enabled) {
+    throw InputError(
+        "machine = " + a.machine +
+        ": a robot cell's motion is in its pose CSV; check that (strand check PART.csv --machine " +
+        a.machine + ")");
+  }
   const post::ParsedGcode parsed = post::parse_gcode(text);
   post::CheckOptions options;
   options.arc_tolerance_mm = a.arc_tolerance_mm;
@@ -81,7 +113,7 @@ void add_check_command(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand(
       "check", "check any G-code: strands, self-crossings, touches, arcs, bounds per layer");
   auto a = std::make_shared<CheckArgs>();
-  sub->add_option("file", a->file, "G-code file to check")->required();
+  sub->add_option("file", a->file, "G-code file, or a robot cell's pose CSV, to check")->required();
   sub->add_option("--machine", a->machine,
                   "machine profile name or .json path: also check build volume and arcs");
   sub->add_flag("--json", a->json, "print the report as JSON");

@@ -13,6 +13,7 @@
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
 #include "slicer/params.h"
+#include "slicer/substrate_params.h"
 #include "slicer/tolerances.h"
 
 namespace strand::cli {
@@ -21,6 +22,7 @@ namespace {
 
 struct GenerateArgs {
   ParamFlags flags;
+  ParamFlags substrate;  // keys of slicer::substrate_table(), flags --substrate-radius etc.
   std::string machine = "deltawasp-2040-clay";
   std::string output;
   std::string report;
@@ -42,7 +44,19 @@ int run_and_print(const patterns::GeneratorSpec& spec, const nlohmann::json& giv
 
 int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
   const auto& table = spec.table();
-  return run_and_print(spec, given_params(table, a.flags), {a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e});
+  JobSettings settings{a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e};
+  settings.substrate = given_params(slicer::substrate_table(), a.substrate);
+  return run_and_print(spec, given_params(table, a.flags), settings);
+}
+
+// The curved-substrate flags of every generator, named as the table says (--substrate,
+// --substrate-radius, --substrate-length, --wrap, --arc-length-at).
+void add_substrate_flags(CLI::App* sub, ParamFlags& flags) {
+  for (const auto& d : slicer::substrate_table().defs) {
+    flags.options[d.key] = sub->add_option("--" + slicer::substrate_flag(d.key), flags.text[d.key], help_for(d))
+                               ->type_name(type_name_for(d))
+                               ->group("Curved substrate");
+  }
 }
 
 // Job file: {"generator", "machine", "params": {flag: value}, "output", "report",
@@ -65,8 +79,11 @@ void add_generator_commands(CLI::App& app, Action& action) {
     auto args = std::make_shared<GenerateArgs>();
     CLI::App* sub = app.add_subcommand(spec.name, spec.summary);
     add_param_flags(sub, spec.table(), args->flags);
+    add_substrate_flags(sub, args->substrate);
     sub->add_option("--machine", args->machine, "machine profile name or path to a .json profile (default deltawasp-2040-clay)");
-    sub->add_option("-o,--output", args->output, "G-code file to write (default " + spec.name + ".gcode)");
+    sub->add_option("-o,--output", args->output,
+                    "G-code file to write (default " + spec.name +
+                        ".gcode; a robot cell writes <name>.csv with .java, .src, .dat, .extruder.gcode)");
     sub->add_option("--report", args->report, "write a JSON report here");
     sub->add_option("--arc-tolerance", args->arc_tolerance_mm,
                     "max chord error when arcs become G1 segments [mm] (default 0.01)");

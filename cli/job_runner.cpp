@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "cli/curved_job.h"
 #include "machines/gcode_format.h"
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
@@ -16,8 +17,8 @@ namespace strand::cli {
 
 namespace {
 
-const char* const kJobKeys[] = {"generator", "machine", "params", "output",
-                                "report", "arc-tolerance", "viewer-e", "description"};
+const char* const kJobKeys[] = {"generator", "machine", "params", "output", "report",
+                                "arc-tolerance", "viewer-e", "substrate", "description"};
 
 bool is_job_key(const std::string& k) {
   for (const char* known : kJobKeys) {
@@ -75,7 +76,8 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   for (const auto& [k, v] : j.items()) {
     if (!is_job_key(k)) {
       problems.push_back(where + "." + k +
-                         ": unknown key (generator, machine, params, output, report, arc-tolerance, viewer-e, description)");
+                         ": unknown key (generator, machine, params, output, report, "
+                         "arc-tolerance, viewer-e, substrate, description)");
     }
   }
   if (!problems.empty()) throw InputError(problems);
@@ -95,6 +97,11 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   if (!s.params.is_object()) {
     throw InputError(where + ".params: must be an object of parameter values, e.g. {\"nozzle\": 0.84}");
   }
+  if (j.contains("substrate") && !j.at("substrate").is_object()) {
+    throw InputError(where + ".substrate: must be an object like {\"type\": \"cylinder\", \"radius\": 20, "
+                     "\"length\": 100}");
+  }
+  s.settings.substrate = j.value("substrate", nlohmann::json::object());
   s.description = slicer::get_text(j, "description", where, "");
   return s;
 }
@@ -114,11 +121,22 @@ Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json&
     throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
                      ": must be in (0, 1] (mm)");
   }
+  if (!s.substrate.empty()) {
+    throw InputError(
+        "substrate: a job on a curved substrate writes robot programs or 4-axis G-code; run it "
+        "with strand job or strand " +
+        generator.name + ", not in a sweep");
+  }
   Prepared p;
   p.machine = machines::load_profile(s.machine);
   if (p.machine.plotter.enabled) {
     throw InputError("machine = " + s.machine + ": a pen plotter; " + generator.name +
                      " needs a printer profile (strand machines lists them)");
+  }
+  if (p.machine.robot.enabled || p.machine.rotary.enabled) {
+    throw InputError("machine = " + s.machine + " (" + machines::to_string(p.machine.volume.kind) +
+                     "): prints on a cylinder; give --substrate cylinder --substrate-radius MM "
+                     "--substrate-length MM");
   }
   const nlohmann::json values = slicer::resolve_params(generator.table(), params);
   p.toolpath = generator.generate(values);
@@ -150,6 +168,7 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& s) {
+  if (!s.substrate.empty()) return run_curved_job(generator, params, s);
   slicer::OutputFiles out;
   for (const std::string& input : s.inputs) out.protect_input(input);
   const std::string path = job_output_path(generator, s);

@@ -19,10 +19,12 @@ struct JobSettings {
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
   bool viewer_e = false;  // also write the preview-only copy with computed E
   std::vector<std::string> inputs;  // files the outputs must never overwrite (the job file)
+  // Curved substrate, keys of slicer::substrate_table() ("type", "radius", ...); empty = flat.
+  nlohmann::json substrate = nlohmann::json::object();
 };
 
 // A job file's content, checked: {"generator", "machine", "params", "output", "report",
-// "arc-tolerance", "description"}.
+// "arc-tolerance", "viewer-e", "substrate", "description"}.
 struct JobSpec {
   const patterns::GeneratorSpec* generator = nullptr;
   nlohmann::json params = nlohmann::json::object();  // as given, keys = CLI long flags
@@ -39,8 +41,9 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where);
 void vet_produced(const post::Produced& produced, const machines::MachineProfile& machine,
                   double arc_tolerance_mm);
 
-// Generates, plans and emits in memory; nothing is written. Throws InputError for bad
-// parameters, an unknown machine or a part that does not fit.
+// Generates, plans and emits a flat (planar) job in memory; nothing is written. Throws
+// InputError for bad parameters, an unknown machine, a part that does not fit, or a job on a
+// curved substrate (those run through run_job, see curved_job.h).
 post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                            const JobSettings& settings);
 
@@ -52,7 +55,8 @@ std::string viewer_output_path(const std::string& gcode_path);
 
 // produce_job, then writes the G-code, viewer copy and report as one transaction (all or
 // none); in release builds the G-code streams into its temp file as it is formatted
-// (Produced::gcode stays empty). Returns what was produced.
+// (Produced::gcode stays empty). Returns what was produced. A job with a substrate runs as a
+// curved job (curved_job.h) and returns its report and summary.
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& settings);
 

@@ -4,11 +4,13 @@
 #include <iostream>
 #include <memory>
 
+#include "cli/commands.h"
+#include "cli/curved_preview.h"
+#include "postprocess/inspect/curved_files.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "postprocess/preview/preview_gltf.h"
 #include "postprocess/preview/preview_html.h"
 #include "postprocess/preview/preview_image.h"
-#include "cli/commands.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -71,8 +73,15 @@ int run(const PreviewArgs& a) {
                      ": must be in [0.001, 1] (mm)");
   }
   const std::string gcode = slicer::read_file(a.input);
-  const post::ParsedGcode parsed = post::parse_gcode(gcode);
-  const post::PreviewScene scene = post::preview_scene(parsed.program, a.arc_tolerance_mm);
+  // A pose CSV or rotary G-code is drawn on its workpiece (the cylinder's axis along x, its
+  // u = 0 line on top); checks marks are for flat files.
+  const bool curved = a.input.ends_with(".csv") || post::is_rotary_gcode(gcode);
+  if (curved && a.marks)
+    throw InputError("marks: only for flat G-code (a curved file is checked with strand check)");
+  const post::ParsedGcode parsed = curved ? post::ParsedGcode{} : post::parse_gcode(gcode);
+  const post::PreviewScene scene =
+      curved ? curved_scene(post::read_curved_part(gcode, a.input), a.arc_tolerance_mm)
+             : post::preview_scene(parsed.program, a.arc_tolerance_mm);
   if (scene.paths.empty()) throw InputError("input = " + a.input + ": no moves to draw (is it G-code?)");
   post::ImageOptions o = image_options(a);
   if (a.marks) {

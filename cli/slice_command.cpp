@@ -6,9 +6,15 @@
 #include <map>
 #include <memory>
 
+#include <filesystem>
+
 #include "cli/commands.h"
 #include "cli/slice_job.h"
+#include "machines/profile.h"
 #include "patterns/registry.h"
+#include "postprocess/inspect/gcode_parser.h"
+#include "postprocess/preview/preview_file.h"
+#include "slicer/mesh.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -23,7 +29,23 @@ struct SliceArgs {
   std::map<std::string, std::string> text;  // pattern flag -> raw text
   std::map<std::string, CLI::Option*> options;
   std::string report;
+  std::vector<std::string> previews;  // .png/.svg/.html/.glb with the mesh under the path
 };
+
+// The written G-code drawn with the mesh (the part, or the substrate of --onto) under it,
+// translucent, in the machine frame: the planner moved the part to the machine's part centre.
+std::string preview_of(const SliceResult& r, const SliceSettings& s, const std::string& path) {
+  const post::PreviewFormat format = post::preview_format(path, "slice.preview");
+  const machines::MachineProfile machine = machines::load_profile(s.machine);
+  post::PreviewScene scene =
+      post::preview_scene(post::parse_gcode(r.produced.gcode).program, s.arc_tolerance_mm);
+  scene.substrate = slicer::to_triangle_mesh(r.part.mesh);
+  const slicer::Vec2 centre = machine.volume.part_center_mm;
+  for (auto& v : scene.substrate.vertices_mm) v += slicer::Vec3(centre.x(), centre.y(), 0.0);
+  post::PreviewFileOptions o;
+  o.title = std::filesystem::path(s.output).filename().string();
+  return post::render_preview(scene, format, o);
+}
 
 // The pattern flags the user gave, checked against the chosen generator's table.
 nlohmann::json pattern_values(const SliceArgs& a) {
@@ -56,6 +78,7 @@ int run_slice(SliceArgs a) {
   }
   out.stage(a.settings.output, r.produced.gcode);
   if (!a.report.empty()) out.stage(a.report, slicer::dump_json(r.produced.report) + "\n");
+  for (const std::string& path : a.previews) out.stage(path, preview_of(r, a.settings, path));
   out.commit();
   std::cout << r.produced.summary;
   const auto& d = r.toolpath.derived;
@@ -119,6 +142,9 @@ void add_slice_command(CLI::App& app, Action& action) {
                   "machine profile name or path (default deltawasp-2040-clay)");
   sub->add_option("-o,--output", s.output, "G-code file to write (default slice.gcode)");
   sub->add_option("--report", a->report, "write a JSON report here");
+  sub->add_option("--preview", a->previews,
+                  "also draw the result with the mesh under it, translucent: .png, .svg, .html "
+                  "(3D orbit view) or .glb (repeatable)");
   sub->add_option("--arc-tolerance", s.arc_tolerance_mm,
                   "max chord error when arcs become G1 segments [mm] (default 0.01)");
   sub->callback([&action, a] { action = [a] { return run_slice(*a); }; });

@@ -160,6 +160,7 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
   r.toolpath.parameters["rotate"] = s.rotate;
   r.toolpath.derived["substrate"] = surface.describe();
   r.produced = post::produce_program(r.toolpath, std::move(program), machine, options, s.output);
+  r.part.mesh = substrate;  // drawn under the path by --preview
   return r;
 }
 
@@ -199,6 +200,13 @@ SliceResult produce_slice(const SliceSettings& s) {
   if (machine.plotter.enabled) {
     throw InputError("machine = " + s.machine +
                      ": a pen plotter; slice needs a printer profile (strand machines lists them)");
+  }
+  if (machine.robot.enabled || machine.rotary.enabled) {
+    // Parts and substrate meshes print on 3-axis machines; the robot and rotary planners
+    // turn a cylinder (the generators' --substrate cylinder).
+    throw InputError("machine = " + s.machine + " (" +
+                     (machine.robot.enabled ? "robot-holds-substrate" : "rotary") +
+                     "): slice and --onto need a 3-axis printer (a delta or Cartesian profile)");
   }
   SliceResult out = s.onto.empty() ? slice_part(s, *g, machine) : produce_onto(s, *g, machine);
   vet_produced(out.produced, machine, s.arc_tolerance_mm);

@@ -35,7 +35,8 @@ struct SliceSettings {
 struct SliceResult {
   post::Produced produced;
   slicer::Toolpath toolpath;
-  slicer::PreparedMesh part;  // the mesh as sliced (placed), with its repairs
+  slicer::PreparedMesh part;  // the mesh as sliced (placed), with its repairs; with `onto`,
+                              // the placed substrate
 };
 
 // Throws InputError for any bad setting, file or mesh, and when the part does not fit.

@@ -34,10 +34,13 @@ BuildVolume read_volume(const nlohmann::json& k, const std::string& origin,
     v.part_center_mm = Vec2::Zero();
     v.min_mm = Vec3(-v.radius_mm, -v.radius_mm, 0.0);
     v.max_mm = Vec3(v.radius_mm, v.radius_mm, v.height_mm);
+  } else if (k.at("type") == "robot-holds-substrate") {
+    v.kind = KinematicsKind::RobotHoldsSubstrate;  // the robot cell's reach replaces a volume
   } else {
-    v.kind = KinematicsKind::Cartesian;
+    v.kind = k.at("type") == "rotary" ? KinematicsKind::Rotary : KinematicsKind::Cartesian;
     if (!k.contains("min_mm") || !k.contains("max_mm")) {
-      problems.push_back(origin + ": kinematics.min_mm/max_mm: missing (required for cartesian)");
+      problems.push_back(origin + ": kinematics.min_mm/max_mm: missing (required for " +
+                         k.at("type").get<std::string>() + ")");
       return v;
     }
     v.min_mm = vec3(k.at("min_mm"));
@@ -111,6 +114,16 @@ std::string to_string(Firmware f) {
   return "";
 }
 
+std::string to_string(KinematicsKind k) {
+  switch (k) {
+    case KinematicsKind::Delta: return "delta";
+    case KinematicsKind::Cartesian: return "cartesian";
+    case KinematicsKind::RobotHoldsSubstrate: return "robot-holds-substrate";
+    case KinematicsKind::Rotary: return "rotary";
+  }
+  return "";
+}
+
 std::string to_string(DepositionModel m) {
   switch (m) {
     case DepositionModel::ManualValve: return "manual-valve";
@@ -152,6 +165,8 @@ MachineProfile profile_from_json(const nlohmann::json& j, const std::string& ori
   p.end_gcode = lines(j, "end_gcode");
   p.source = j;
   p.plotter = read_plotter(j, origin, problems);  // plotting (issue 5)
+  p.robot = read_robot_cell(j, origin, problems);  // curved substrates (issue 11)
+  p.rotary = read_rotary_axis(j, origin, problems);
   if (!problems.empty()) throw InputError(problems);
   return p;
 }

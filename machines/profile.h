@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "machines/holder_profile.h"
 #include "machines/plotter_profile.h"
 #include "slicer/geometry.h"
 #include "slicer/toolpath.h"
@@ -17,8 +18,10 @@ using slicer::Vec2;
 using slicer::Vec3;
 
 enum class KinematicsKind {
-  Delta,      // cylindrical build volume centred on (0, 0)
-  Cartesian,  // box from min_mm to max_mm
+  Delta,                // cylindrical build volume centred on (0, 0)
+  Cartesian,            // box from min_mm to max_mm
+  RobotHoldsSubstrate,  // a robot holds a curved substrate under a fixed nozzle (robot cell)
+  Rotary,               // XYZ box plus a rotary axis that turns a cylinder under the nozzle
 };
 
 enum class Firmware { Marlin, RepRap, Klipper, Grbl };
@@ -88,6 +91,9 @@ struct MachineProfile {
   nlohmann::json source;             // the profile as loaded, for reports
   // --- plotting (issue 5) ---
   Plotter plotter;                   // pen and plotter kinematics; enabled for plotters
+  // --- curved substrates (issue 11) ---
+  RobotCell robot;                   // enabled for robot-holds-substrate
+  RotaryAxis rotary;                 // enabled for rotary
 };
 
 // Loads a shipped profile by name, or a user profile from a path ending in .json.
@@ -99,6 +105,7 @@ MachineProfile profile_from_json(const nlohmann::json& j, const std::string& ori
 std::vector<std::pair<std::string, std::string>> list_profiles();
 
 std::string to_string(Firmware f);
+std::string to_string(KinematicsKind k);
 std::string to_string(DepositionModel m);
 
 }  // namespace strand::machines

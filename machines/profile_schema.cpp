@@ -9,7 +9,7 @@ namespace strand::machines {
 
 namespace {
 
-enum class T { Number, Bool, String, StringList, Vec2, Vec3, Object, FreeObject };
+enum class T { Number, Bool, String, StringList, NumberList, Vec2, Vec3, Object, FreeObject };
 
 struct Field {
   const char* key;
@@ -28,7 +28,7 @@ const std::vector<Field>& schema() {
       {"sources", T::FreeObject},
       {"kinematics", T::Object, true, {}, {}, {},
        {
-           {"type", T::String, true, {}, {}, {"delta", "cartesian"}},
+           {"type", T::String, true, {}, {}, {"delta", "cartesian", "robot-holds-substrate", "rotary"}},
            {"radius_mm", T::Number, false, 1.0, 10000.0},
            {"height_mm", T::Number, false, 1.0, 10000.0},
            {"min_mm", T::Vec3},
@@ -80,6 +80,53 @@ const std::vector<Field>& schema() {
       {"max_surface_slope_deg", T::Number, false, 0.0, 89.0},
       {"start_gcode", T::StringList},
       {"end_gcode", T::StringList},
+      // --- curved substrates (issue 11): robot cell, its extruder, rotary axis ---
+      {"robot", T::Object, false, {}, {}, {},
+       {
+           {"arm", T::String, true, {}, {}, {"lbr-iiwa-14-r820"}},
+           {"v_cart_mm_per_s", T::Number, false, 0.1, 1000.0},
+           {"travel_speed_mm_per_s", T::Number, false, 0.1, 1000.0},
+           {"lift_mm", T::Number, false, 0.0, 100.0},
+           {"joint_limits_deg", T::NumberList},
+           {"joint_limit_margin_deg", T::Number, false, 0.0, 45.0},
+           {"reach_mm", T::Number, false, 1.0, 10000.0},
+           {"nozzle_tip_mm", T::Vec3, true},
+           {"nozzle_axis", T::Vec3, true},
+           {"substrate_axis", T::Vec3, true},
+           {"mount_mm", T::Number, false, 0.0, 2000.0},
+           {"mount_rotation_deg", T::Number, false, -360.0, 360.0},
+           {"sunrise", T::Object, false, {}, {}, {},
+            {
+                {"io_group", T::String},
+                {"lap_signal", T::String},
+                {"csv_dir", T::String},
+            }},
+           {"krl", T::Object, false, {}, {}, {},
+            {
+                {"tool_index", T::Number, false, 1.0, 16.0},
+                {"base_index", T::Number, false, 1.0, 32.0},
+                {"lap_output", T::Number, false, 1.0, 4096.0},
+                {"points_per_module", T::Number, false, 10.0, 100000.0},
+            }},
+       }},
+      {"extruder", T::Object, false, {}, {}, {},
+       {
+           {"park_mm", T::Vec3, true},
+           {"park_feed_mm_per_min", T::Number, false, 1.0, 1e6},
+           {"v_ext_mm_per_min", T::Number, false, 0.01, 1e5},
+           {"e_per_mm", T::String, false, {}, {}, {"time-based", "volumetric"}},
+           {"handshake_pin", T::Number, false, -1.0, 1000.0},
+           {"handshake_state", T::Number, false, 0.0, 1.0},
+       }},
+      {"rotary", T::Object, false, {}, {}, {},
+       {
+           {"axis", T::String, true, {}, {}, {"A", "B"}},
+           {"axis_dir", T::Vec3, true},
+           {"axis_point_mm", T::Vec3, true},
+           {"max_radius_mm", T::Number, false, 0.1, 10000.0},
+           {"lift_mm", T::Number, false, 0.0, 100.0},
+           {"feed", T::String, false, {}, {}, {"xyz-distance", "inverse-time"}},
+       }},
       // --- plotting (issue 5): plotter kinematics and pen handling ---
       {"plotter", T::Object, false, {}, {}, {},
        {
@@ -136,6 +183,7 @@ const char* type_rule(T t) {
     case T::Bool: return "must be true or false";
     case T::String: return "must be a string";
     case T::StringList: return "must be a list of strings";
+    case T::NumberList: return "must be a list of numbers";
     case T::Vec2: return "must be [x, y] in mm";
     case T::Vec3: return "must be [x, y, z] in mm";
     case T::Object:
@@ -163,6 +211,7 @@ bool type_ok(T t, const nlohmann::json& v) {
         if (!e.is_string()) return false;
       }
       return true;
+    case T::NumberList: return numbers(v, v.is_array() ? v.size() : 0) && !v.empty();
     case T::Vec2: return numbers(v, 2);
     case T::Vec3: return numbers(v, 3);
     case T::Object:

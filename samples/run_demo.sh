@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # The main demo: runs every job file in samples/ into OUT (G-code, JSON report, summary),
 # draws previews of each job's G-code, and runs every sweep in samples/sweeps/ into
-# OUT/<sweep name>/ (G-code per point, manifest, index.html contact sheet).
+# OUT/<sweep name>/ (G-code per point, manifest, index.html contact sheet). Jobs on a curved
+# substrate write what their machine takes (the job's "output" extension: a robot cell's pose
+# CSV with its .java, .src, .dat and .extruder.gcode, or a rotary printer's 4-axis G-code),
+# checked on their cylinder.
 # Usage: samples/run_demo.sh path/to/strand OUT
 set -euo pipefail
 strand="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
@@ -9,11 +12,25 @@ samples="$(cd "$(dirname "$0")" && pwd)"
 out="$2"
 mkdir -p "$out"
 cd "$out"
+# Inputs are named relative to OUT so the file headers and reports carry no path of this
+# machine (the same checkout anywhere gives byte-identical files).
+samples="$(realpath --relative-to=. "$samples")"
 for job in "$samples"/*.json; do
   name="$(basename "$job" .json)"
+  machine="$(sed -n 's/.*"machine": *"\([^"]*\)".*/\1/p' "$job")"
+  if grep -q '"substrate"' "$job"; then
+    output="$(sed -n 's/.*"output": *"\([^"]*\)".*/\1/p' "$job")"
+    ext="${output##*.}"
+    "$strand" job "$job" -o "$name.$ext" --report "$name.json" | tee "$name-summary.txt"
+    # Crossings in (u, v) around the cylinder, poses against the nozzle, reach and joints.
+    "$strand" check "$name.$ext" --machine "$machine" > "$name-check.txt"
+    tail -n 1 "$name-check.txt"
+    # Drawn on the workpiece: the cylinder's axis along x, its u = 0 line on top.
+    for view in png html glb; do "$strand" preview "$name.$ext" -o "$name-preview.$view"; done
+    continue
+  fi
   "$strand" job "$job" -o "$name.gcode" --report "$name.json" | tee "$name-summary.txt"
   # Check the specimen against its machine (crossings, strands, volume) and draw layer 1.
-  machine="$(sed -n 's/.*"machine": *"\([^"]*\)".*/\1/p' "$job")"
   "$strand" check "$name.gcode" --machine "$machine" --svg-layer 1 "$name-layer1.svg" > "$name-check.txt"
   tail -n 1 "$name-check.txt"
   for ext in png svg html glb; do "$strand" preview "$name.gcode" -o "$name-preview.$ext"; done
@@ -32,13 +49,14 @@ for plot in plot-lettering plot-photo; do
 done
 # Meshes (samples/meshes/): a bone plug filled with the scaffold and with the tetrachiral
 # lattice, a torus with the scaffold, and a scaffold specimen laid on a curved plate
-# (3-axis, nozzle vertical); every file checked against its machine.
+# (3-axis, nozzle vertical); every file checked against its machine and drawn with its mesh
+# under it (PNG, and HTML with a 3D orbit view).
 slice() {  # name machine strand-slice-arguments...
   local name="$1" machine="$2"; shift 2
-  "$strand" slice "$@" --machine "$machine" -o "$name.gcode" --report "$name.json" | tee "$name-summary.txt"
+  "$strand" slice "$@" --machine "$machine" -o "$name.gcode" --report "$name.json" \
+    --preview "$name-preview.png" --preview "$name-preview.html" | tee "$name-summary.txt"
   "$strand" check "$name.gcode" --machine "$machine" > "$name-check.txt"
   tail -n 1 "$name-check.txt"
-  for ext in png html; do "$strand" preview "$name.gcode" -o "$name-preview.$ext"; done
 }
 slice bone-plug-scaffold deltawasp-2040-clay "$samples/meshes/bone-plug.stl" --pattern scaffold \
   --nozzle 0.6 --gap 1 --perimeters 1

@@ -27,6 +27,10 @@ double arc_sweep(const Vec2& center, const Vec2& from, const Vec2& to, bool ccw)
 Vec2 unit_vector(double rad) { return Vec2(std::cos(rad), std::sin(rad)); }
 
 double wrap_period(double v, double period) {
+  // Most calls are already within one period either side: fmod would return v unchanged
+  // there, so skip it (the same result, and fmod is slow on the generators' hot paths).
+  if (v >= 0 && v < period) return v;
+  if (v < 0 && v > -period) return v + period;
   v = std::fmod(v, period);
   return v < 0 ? v + period : v;
 }

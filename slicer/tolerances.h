@@ -16,6 +16,17 @@ inline constexpr double kMinArcSweepRad = 1e-9;
 inline constexpr double kDefaultArcToleranceMm = 0.01;
 // Slack allowed on build-volume checks so that a part placed exactly on the edge passes, mm.
 inline constexpr double kBoundsSlackMm = 1e-6;
+// Curved substrates (issue 11). A pose puts its contact point on the nozzle tip within this
+// (R p + x = tip), mm; and its normal against the nozzle axis within kPoseNormalDeg, deg.
+inline constexpr double kPoseTipMm = 0.01;
+inline constexpr double kPoseNormalDeg = 0.1;
+// A deposit lies on its layer's offset surface when its radius is within this of the
+// layer's median deposit radius, mm (files round to 0.001 mm).
+inline constexpr double kOffSurfaceMm = 0.01;
+// Planned and actual speed may differ by this fraction (rounding of times and positions).
+inline constexpr double kSpeedDeviation = 0.01;
+// Segments shorter than this are not speed-checked: the file's rounding dominates them, mm.
+inline constexpr double kSpeedCheckMinMm = 0.05;
 
 // A slicing plane that passes exactly through a mesh vertex is moved up by this much, so
 // every contour is a simple closed curve, mm (far below any layer height).

@@ -211,6 +211,7 @@ class Reader {
       case 91: relative_ = true; relative_e_ = true; break;
       case 92:
         if (auto e = w.get('E')) e_ = *e;
+        if (auto a = w.get('A')) a_ = *a;
         for (int a = 0; a < 3; ++a) {
           if (auto v = w.get("XYZ"[a])) pos_[a] = *v * scale_;
         }
@@ -225,6 +226,7 @@ class Reader {
     if (auto p = w.get('P')) seconds = *p / 1000.0;
     slicer::push_dwell(out_.program, seconds, pos_, layer_);
     out_.move_lines.push_back(n);  // one line per move, dwells included
+    if (has_a_) out_.a_deg.push_back(a_);
   }
 
   void motion(int code, const Words& w, int n) {
@@ -237,6 +239,7 @@ class Reader {
         moved = true;
       }
     }
+    moved = rotary(w) || moved;
     double de = 0.0;
     if (auto e = w.get('E')) {
       de = relative_e_ ? *e : *e - e_;
@@ -262,9 +265,21 @@ class Reader {
     mv.layer = layer_;
     out_.program.moves.push_back(std::move(mv));
     out_.move_lines.push_back(n);
+    if (has_a_) out_.a_deg.push_back(a_);
     if (out_.program.moves.size() == 1) out_.program.start_mm = pos_;
     pos_ = target;
     marker_pending_ = false;
+  }
+
+  // Reads an A word (rotary axis, degrees); true when there is one. Moves before the first
+  // A word were at the old A.
+  bool rotary(const Words& w) {
+    const auto a = w.get('A');
+    if (!a) return false;
+    if (!has_a_) out_.a_deg.assign(out_.program.moves.size(), a_);
+    has_a_ = true;
+    a_ = relative_ ? a_ + *a : *a;
+    return true;
   }
 
   void arc(Move& mv, int code, const Words& w, int n) {
@@ -321,6 +336,8 @@ class Reader {
   ParsedGcode out_;
   Vec3 pos_ = Vec3::Zero();
   double e_ = 0.0;
+  double a_ = 0.0;      // rotary axis position, degrees
+  bool has_a_ = false;  // an A word was read: a_deg is kept parallel to the moves
   double feed_ = 0.0;
   double scale_ = 1.0;
   double width_ = 0.0;

@@ -29,6 +29,9 @@ struct ParsedGcode {
   std::vector<ParseIssue> issues;
   std::vector<int> arc_lines;      // lines holding G2/G3
   std::vector<int> move_lines;     // source line of each move in program.moves
+  // Rotary-axis files (A words, degrees): the A position after each move, parallel to
+  // program.moves; empty when the file has no A word.
+  std::vector<double> a_deg;
   bool has_e = false;              // deposits are recognised by E when true, by G1 otherwise
   bool inches = false;
 };

@@ -10,21 +10,17 @@
 
 namespace strand::post {
 
-namespace {
-
 double round_to(double v, int decimals) {
   const double s = std::pow(10.0, decimals);
   return std::round(v * s) / s;
 }
 
-std::string clock(double s) {
+std::string clock_text(double s) {
   const long total = std::lround(s);
   std::ostringstream o;
   o << total / 3600 << "h " << (total / 60) % 60 << "m " << total % 60 << "s";
   return o.str();
 }
-
-}  // namespace
 
 nlohmann::json make_report(const slicer::Toolpath& t, const machines::MachineProfile& m,
                            const Estimate& e, const std::string& gcode_path) {
@@ -100,8 +96,8 @@ std::string summary_text(const nlohmann::json& r) {
     << machines::fmt_fixed(tot.at("ink_volume_ml").get<double>(), 2) << " mL ("
     << machines::fmt_fixed(tot.at("syringe_fills").get<double>(), 2) << " fills of the "
     << slicer::short_number(tot.at("reservoir_ml").get<double>()) << " mL reservoir)\n";
-  o << "  time           " << clock(tot.at("time_trapezoid_s").get<double>())
-    << " (acceleration + junction limits), " << clock(tot.at("time_naive_s").get<double>())
+  o << "  time           " << clock_text(tot.at("time_trapezoid_s").get<double>())
+    << " (acceleration + junction limits), " << clock_text(tot.at("time_naive_s").get<double>())
     << " (distance / feed)\n";
   return o.str();
 }

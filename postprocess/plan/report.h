@@ -15,4 +15,8 @@ nlohmann::json make_report(const slicer::Toolpath& t, const machines::MachinePro
 // A few lines for a terminal: size, layers, strands, length, ink, time.
 std::string summary_text(const nlohmann::json& report);
 
+// Shared by the reports: `v` rounded to `decimals` places, and seconds as "1h 2m 3s".
+double round_to(double v, int decimals);
+std::string clock_text(double seconds);
+
 }  // namespace strand::post

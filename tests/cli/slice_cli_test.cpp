@@ -1,7 +1,9 @@
 // `strand slice` from the outside: every pattern on a part with a hole passes
 // `strand check --machine`; bad meshes and flags exit 2 with one line and no file.
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "slicer/file_io.h"
@@ -67,6 +69,35 @@ TEST(SliceCli, SameInputGivesIdenticalBytes) {
         run_strand(std::string("slice plug.stl --nozzle 0.6 --gap 1 -o ") + out, dir).exit_code, 0);
   }
   EXPECT_EQ(slurp(dir + "/a.gcode"), slurp(dir + "/b.gcode"));
+}
+
+TEST(SliceCli, PreviewDrawsThePlacedMeshUnderThePath) {
+  const auto dir = plug_dir();
+  const auto r = run_strand(
+      "slice plug.stl --nozzle 0.6 --gap 1 --machine marlin-xyz-200 -o p.gcode --preview p.glb "
+      "--preview p.html",
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string glb = slurp(dir + "/p.glb");
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromMemory(&m, &err, &warn,
+                                          reinterpret_cast<const unsigned char*>(glb.data()),
+                                          static_cast<unsigned int>(glb.size())))
+      << err;
+  const auto substrate = std::find_if(m.nodes.begin(), m.nodes.end(),
+                                      [](const auto& n) { return n.name == "substrate"; });
+  ASSERT_NE(substrate, m.nodes.end());
+  const auto& prim = m.meshes.at(static_cast<std::size_t>(substrate->mesh)).primitives.at(0);
+  const auto& pos = m.accessors.at(static_cast<std::size_t>(prim.attributes.at("POSITION")));
+  // The tube (radius 10 mm) moved with the part to the machine's part centre (100, 100).
+  EXPECT_NEAR(pos.minValues.at(0), 90.0, 0.05);
+  EXPECT_NEAR(pos.maxValues.at(0), 110.0, 0.05);
+  EXPECT_NE(slurp(dir + "/p.html").find("\"substrate\":{"), std::string::npos);
+  expect_input_error(run_strand("slice plug.stl --nozzle 0.6 --gap 1 -o q.gcode --preview q.bmp", dir),
+                     "slice.preview = q.bmp: extension must be");
+  EXPECT_FALSE(exists(dir + "/q.gcode"));
 }
 
 TEST(SliceCli, RepairMakesAHoledMeshSlice) {
@@ -167,6 +198,10 @@ INSTANTIATE_TEST_SUITE_P(
                 "slice.perimeters = 50"},
         BadCase{"plotter", "plug.stl --nozzle 0.6 --gap 1 --machine xy-plotter-servo",
                 "a pen plotter; slice needs a printer"},
+        BadCase{"robot_cell", "plug.stl --nozzle 0.6 --gap 1 --machine kuka-iiwa14-wasp-cylinder",
+                "(robot-holds-substrate): slice and --onto need a 3-axis printer"},
+        BadCase{"rotary", "plug.stl --nozzle 0.6 --gap 1 --machine marlin-rotary-a",
+                "(rotary): slice and --onto need a 3-axis printer"},
         BadCase{"too_much_work", "plug.stl --nozzle 0.001 --pitch 0.001 --layer-height 0.001",
                 "more work than allowed"}),
     [](const auto& info) { return std::string(info.param.name); });

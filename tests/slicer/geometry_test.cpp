@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "slicer/units.h"
 
 namespace strand::slicer {
@@ -40,6 +42,20 @@ TEST(WrapPeriod, MapsIntoHalfOpenRange) {
   EXPECT_NEAR(wrap_period(5 * kPi, 2 * kPi), kPi, 1e-12);
   EXPECT_EQ(wrap_period(-4.0, 4.0), 0.0);
   EXPECT_NEAR(wrap_period(7.5, 4.0), 3.5, 1e-12);
+}
+
+// The shortcut for values within one period either side gives fmod's bits exactly (outputs
+// of every generator depend on it), and zero keeps its sign convention.
+TEST(WrapPeriod, ShortcutGivesFmodsBits) {
+  const double period = 4.0 * kPi / 3.0;
+  for (int i = -2000; i <= 2000; ++i) {
+    const double v = i * period / 997.0 + 1e-7 * i;
+    double expected = std::fmod(v, period);
+    if (expected < 0) expected += period;
+    EXPECT_EQ(wrap_period(v, period), expected) << v;
+  }
+  EXPECT_FALSE(std::signbit(wrap_period(0.0, period)));
+  EXPECT_EQ(wrap_period(-period, period), std::fmod(-period, period));
 }
 
 }  // namespace

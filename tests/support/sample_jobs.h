@@ -14,7 +14,8 @@ namespace strand::testing {
 std::string samples_dir();
 // The .json files directly in `dir`, sorted by name.
 std::vector<std::filesystem::path> json_files(const std::string& dir);
-// Generator name -> the "params" of its first sample job (by file name) in samples/.
+// Generator name -> the "params" of its first flat sample job (by file name) in samples/;
+// jobs on a curved substrate are left out.
 const std::map<std::string, nlohmann::json>& sample_params();
 
 }  // namespace strand::testing

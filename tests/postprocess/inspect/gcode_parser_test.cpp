@@ -48,6 +48,16 @@ TEST(GcodeParser, ArcCentreFromIJ) {
   EXPECT_EQ(r.program.moves[1].center_mm, slicer::Vec2(0, 0));
 }
 
+TEST(GcodeParser, RotaryAWordsFollowTheMoves) {
+  // A turn with no XYZ is still a move (a deposit when E grows); moves before the first A
+  // word are at A = 0, and G92 sets it.
+  const auto r = parse_gcode("G1 X1 E1\nG1 A90 E2\nG0 Z5\nG92 A10\nG1 X2 A20 E3\n");
+  ASSERT_EQ(r.program.moves.size(), 4u);
+  EXPECT_EQ(r.a_deg, (std::vector<double>{0.0, 90.0, 90.0, 20.0}));
+  EXPECT_EQ(r.program.moves[1].kind, slicer::MoveKind::Deposit);
+  EXPECT_TRUE(parse_gcode("G1 X1 E1\n").a_deg.empty()) << "no A words, no A column";
+}
+
 }  // namespace
 }  // namespace strand::post
 

@@ -31,7 +31,10 @@ std::optional<slicer::Toolpath> sample_toolpath(const patterns::GeneratorSpec& g
 }
 
 // Printers (not pen plotters) with any deposition model.
-bool is_diw(const machines::MachineProfile& m) { return !m.plotter.enabled; }
+// Flat DIW printers; robot cells and rotary printers print on cylinders (produce_curved).
+bool is_diw(const machines::MachineProfile& m) {
+  return !m.plotter.enabled && !m.robot.enabled && !m.rotary.enabled;
+}
 
 double geometric_volume_mm3(const slicer::Toolpath& t) {
   double v = 0.0;

@@ -1,0 +1,132 @@
+// Reading the robot cell and rotary axis blocks of a profile.
+#include "machines/holder_profile.h"
+
+#include <cmath>
+
+namespace strand::machines {
+
+namespace {
+
+Vec3 vec3_or(const nlohmann::json& j, const char* key, const Vec3& fallback) {
+  if (!j.contains(key)) return fallback;
+  const auto& v = j.at(key);
+  return Vec3(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+}
+
+// A direction given in the profile, normalised; a zero vector is a problem.
+Vec3 direction(const nlohmann::json& j, const char* key, const Vec3& fallback,
+               const std::string& where, std::vector<std::string>& problems) {
+  const Vec3 v = vec3_or(j, key, fallback);
+  if (v.norm() < 1e-9) {
+    problems.push_back(where + "." + key + ": must be a non-zero direction");
+    return fallback;
+  }
+  return v.normalized();
+}
+
+ExtruderSetup read_extruder(const nlohmann::json& e) {
+  ExtruderSetup x;
+  x.park_mm = vec3_or(e, "park_mm", x.park_mm);
+  x.park_feed_mm_per_min = e.value("park_feed_mm_per_min", x.park_feed_mm_per_min);
+  x.v_ext_mm_per_min = e.value("v_ext_mm_per_min", x.v_ext_mm_per_min);
+  x.time_based = e.value("e_per_mm", std::string("time-based")) == "time-based";
+  x.handshake_pin = e.value("handshake_pin", x.handshake_pin);
+  x.handshake_state = e.value("handshake_state", x.handshake_state);
+  return x;
+}
+
+RobotPrograms read_programs(const nlohmann::json& r) {
+  RobotPrograms p;
+  const auto s = r.value("sunrise", nlohmann::json::object());
+  p.sunrise_io_group = s.value("io_group", p.sunrise_io_group);
+  p.sunrise_lap_signal = s.value("lap_signal", p.sunrise_lap_signal);
+  p.sunrise_csv_dir = s.value("csv_dir", p.sunrise_csv_dir);
+  const auto k = r.value("krl", nlohmann::json::object());
+  p.krl_tool_index = k.value("tool_index", p.krl_tool_index);
+  p.krl_base_index = k.value("base_index", p.krl_base_index);
+  p.krl_lap_output = k.value("lap_output", p.krl_lap_output);
+  p.krl_points_per_module = k.value("points_per_module", p.krl_points_per_module);
+  return p;
+}
+
+}  // namespace
+
+RobotCell read_robot_cell(const nlohmann::json& j, const std::string& origin,
+                          std::vector<std::string>& problems) {
+  RobotCell c;
+  const bool is_robot = j.at("kinematics").at("type") == "robot-holds-substrate";
+  if (!is_robot) {
+    if (j.contains("robot") || j.contains("extruder")) {
+      problems.push_back(origin +
+                         ": robot/extruder: only for kinematics.type = robot-holds-substrate");
+    }
+    return c;
+  }
+  if (!j.contains("robot") || !j.contains("extruder")) {
+    problems.push_back(origin + ": robot/extruder: missing (required for robot-holds-substrate)");
+    return c;
+  }
+  c.enabled = true;
+  const auto& r = j.at("robot");
+  const std::string where = origin + ": robot";
+  c.v_cart_mm_per_s = r.value("v_cart_mm_per_s", c.v_cart_mm_per_s);
+  c.travel_speed_mm_per_s = r.value("travel_speed_mm_per_s", c.travel_speed_mm_per_s);
+  c.lift_mm = r.value("lift_mm", c.lift_mm);
+  if (r.contains("joint_limits_deg")) {
+    const auto& l = r.at("joint_limits_deg");
+    if (l.size() != 7) problems.push_back(where + ".joint_limits_deg: must list 7 joints (A1..A7)");
+    for (std::size_t i = 0; i < 7 && i < l.size(); ++i) c.joint_limits_deg[i] = l[i].get<double>();
+  }
+  c.joint_margin_deg = r.value("joint_limit_margin_deg", c.joint_margin_deg);
+  c.reach_mm = r.value("reach_mm", c.reach_mm);
+  c.nozzle_tip_mm = vec3_or(r, "nozzle_tip_mm", c.nozzle_tip_mm);
+  c.nozzle_axis = direction(r, "nozzle_axis", c.nozzle_axis, where, problems);
+  c.substrate_axis = direction(r, "substrate_axis", c.substrate_axis, where, problems);
+  if (std::abs(c.nozzle_axis.dot(c.substrate_axis)) > 1e-6) {
+    problems.push_back(where +
+                       ".substrate_axis: must be perpendicular to nozzle_axis (the nozzle meets "
+                       "the cylinder's side)");
+  }
+  c.mount_mm = r.value("mount_mm", c.mount_mm);
+  c.mount_rotation_deg = r.value("mount_rotation_deg", c.mount_rotation_deg);
+  c.extruder = read_extruder(j.at("extruder"));
+  c.programs = read_programs(r);
+  return c;
+}
+
+RotaryAxis read_rotary_axis(const nlohmann::json& j, const std::string& origin,
+                            std::vector<std::string>& problems) {
+  RotaryAxis a;
+  const bool is_rotary = j.at("kinematics").at("type") == "rotary";
+  if (!is_rotary) {
+    if (j.contains("rotary"))
+      problems.push_back(origin + ": rotary: only for kinematics.type = rotary");
+    return a;
+  }
+  if (!j.contains("rotary")) {
+    problems.push_back(origin + ": rotary: missing (required for kinematics.type = rotary)");
+    return a;
+  }
+  a.enabled = true;
+  const auto& r = j.at("rotary");
+  const std::string where = origin + ": rotary";
+  a.letter = r.value("axis", std::string("A"))[0];
+  a.axis_dir = direction(r, "axis_dir", a.axis_dir, where, problems);
+  if (std::abs(a.axis_dir.z()) > 1e-6) {
+    problems.push_back(
+        where + ".axis_dir: must be horizontal (the nozzle points down onto the cylinder's side)");
+  }
+  a.axis_point_mm = vec3_or(r, "axis_point_mm", a.axis_point_mm);
+  a.max_radius_mm = r.value("max_radius_mm", a.max_radius_mm);
+  a.lift_mm = r.value("lift_mm", a.lift_mm);
+  a.inverse_time = r.value("feed", std::string("xyz-distance")) == "inverse-time";
+  const std::string flavour = j.at("firmware").at("flavour").get<std::string>();
+  if (a.inverse_time && flavour != "reprap") {
+    problems.push_back(where +
+                       ".feed = \"inverse-time\": G93 needs firmware.flavour = reprap "
+                       "(RepRapFirmware 3.5+); Marlin has no G93");
+  }
+  return a;
+}
+
+}  // namespace strand::machines

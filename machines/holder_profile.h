@@ -1,0 +1,75 @@
+// The curved-substrate part of a machine profile: a robot that holds the substrate under a
+// fixed nozzle (with the fixed printer used only as an extruder), or a rotary axis that turns
+// the substrate under an XYZ nozzle. Both reduce to one holder: where the nozzle is, which
+// way it points and about which line the workpiece turns.
+#pragma once
+
+#include <array>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "slicer/geometry.h"
+
+namespace strand::machines {
+
+using slicer::Vec3;
+
+// The fixed printer of a robot cell, used only to extrude (E-only G-code on the same time line).
+struct ExtruderSetup {
+  Vec3 park_mm = Vec3::Zero();  // where it parks its nozzle, printer frame (thesis 0,-90,244)
+  double park_feed_mm_per_min = 3000.0;
+  double v_ext_mm_per_min = 100.0;  // E feed while depositing (time-based)
+  bool time_based = true;           // E per mm = v_ext / v_cart; false: bead volume / mm3 per E
+  int handshake_pin = -1;           // M226 P<pin> S<state> before each lap; -1 = none
+  int handshake_state = 1;
+};
+
+// What the Sunrise and KRL programs need beyond the geometry.
+struct RobotPrograms {
+  std::string sunrise_io_group = "ExtruderIO";  // Sunrise I/O group class with the lap signal
+  std::string sunrise_lap_signal = "LapStart";  // its boolean output set at each lap start
+  std::string sunrise_csv_dir = "C:/KRC/ROBOTER/UserFiles";  // where the CSV is copied
+  int krl_tool_index = 1;            // TOOL_DATA[n]: the workpiece frame on the flange
+  int krl_base_index = 1;            // BASE_DATA[n]: the fixed nozzle (external TCP)
+  int krl_lap_output = 1;            // $OUT[n] pulsed at each lap start
+  int krl_points_per_module = 2000;  // LIN points per sub-program
+};
+
+struct RobotCell {
+  bool enabled = false;
+  std::string arm = "lbr-iiwa-14-r820";
+  double v_cart_mm_per_s = 6.0;         // contact speed while depositing
+  double travel_speed_mm_per_s = 20.0;  // contact speed for travels
+  double lift_mm = 3.0;                 // the substrate backs off the nozzle this far for travels
+  std::array<double, 7> joint_limits_deg = {170, 120, 170, 120, 170, 120, 175};
+  double joint_margin_deg = 5.0;  // laps keep this far from the last joint's limit
+  double reach_mm = 820.0;        // wrist centre from the shoulder
+  // Calibration: the nozzle tip and the nozzle axis (direction of flow) in the robot base frame.
+  Vec3 nozzle_tip_mm = Vec3(650.0, 0.0, 450.0);
+  Vec3 nozzle_axis = Vec3(0.0, 0.0, -1.0);
+  Vec3 substrate_axis = Vec3(1.0, 0.0, 0.0);  // cylinder axis in the base frame (flange z)
+  double mount_mm = 40.0;           // flange face to the cylinder's mounted end, along flange z
+  double mount_rotation_deg = 0.0;  // cylinder u = 0 line about flange z from flange +x
+  ExtruderSetup extruder;
+  RobotPrograms programs;
+};
+
+struct RotaryAxis {
+  bool enabled = false;
+  char letter = 'A';
+  Vec3 axis_dir = Vec3::UnitX();      // unit, machine frame; the workpiece turns about it
+  Vec3 axis_point_mm = Vec3::Zero();  // chuck face centre on the axis: the cylinder's v = 0
+  double max_radius_mm = 50.0;        // largest substrate the axis clears above the bed
+  double lift_mm = 2.0;               // nozzle lift for travels
+  bool inverse_time = false;          // G93 feeds (RepRapFirmware 3.5+ only)
+};
+
+// Reads j["robot"], j["extruder"] and j["rotary"] (schema already checked) and the kinematics
+// type; problems are appended in the profile loader's format.
+RobotCell read_robot_cell(const nlohmann::json& j, const std::string& origin,
+                          std::vector<std::string>& problems);
+RotaryAxis read_rotary_axis(const nlohmann::json& j, const std::string& origin,
+                            std::vector<std::string>& problems);
+
+}  // namespace strand::machines

@@ -1,0 +1,38 @@
+// KUKA KRL program of a robot cell for a KR C4 (.src + .dat): the workpiece is carried by the
+// robot and the nozzle is an external TCP ($IPO_MODE = #BASE, $TOOL = workpiece on the flange,
+// $BASE = nozzle), so each LIN point is the nozzle's pose in the workpiece frame (X, Y, Z in mm,
+// A, B, C in degrees) and $VEL.CP (m/s) is the speed of the contact over the workpiece.
+// Each lap is a sub-program, split further when longer than the profile's points per module.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "machines/profile.h"
+#include "slicer/pose_program.h"
+
+namespace strand::machines {
+
+struct KrlProgram {
+  std::string src;
+  std::string dat;
+  int sub_programs = 0;
+  int lin_points = 0;
+};
+
+// A KRL module name for an output base name: letters, digits and _ (max 24 characters).
+std::string krl_module_name(const std::string& base_name);
+
+// KUKA A, B, C angles (Z, Y', X'' rotations) of a rotation, degrees.
+Vec3 kuka_abc_deg(const Eigen::Matrix3d& r);
+
+// The nozzle (external TCP) frame in the base frame: z along the flow, x = nozzle axis x
+// cylinder axis, so the LIN angles stay clear of B = +-90 deg (A follows the turn).
+Eigen::Matrix3d nozzle_frame_rotation(const RobotCell& cell);
+
+// Precondition: m.robot.enabled.
+KrlProgram write_krl(const slicer::PoseProgram& program, const MachineProfile& m,
+                     const std::string& base_name, const std::vector<std::string>& header,
+                     double blend_mm);
+
+}  // namespace strand::machines

@@ -1,0 +1,70 @@
+// `strand check` for curved substrates: a robot cell's pose CSV or a rotary printer's 4-axis
+// G-code mapped back onto the cylinder. Reports per layer the deposit radius, strands and
+// crossings/touches in (u, v) (u periodic: the seam is handled), and the poses off the nozzle
+// tip, normals not facing the nozzle, points off the layer's offset surface, speed deviations,
+// moves outside the envelope, and (robot) reach and joint limits from inverse kinematics.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "machines/joint_analysis.h"
+#include "machines/profile.h"
+#include "postprocess/inspect/crossings.h"
+#include "postprocess/inspect/curved_files.h"
+#include "postprocess/inspect/gcode_parser.h"
+
+namespace strand::post {
+
+struct PoseFinding {
+  std::size_t row = 0;  // CSV row index (pose CSV) or G-code line (rotary)
+  std::string what;
+};
+
+struct PoseLayerCheck {
+  int layer = 0;
+  double radius_mm = 0.0;  // median deposit radius from the cylinder axis
+  int strands = 0;
+  std::vector<Contact> crossings, touches;  // at_mm = (u, v); move_a/b = rows or lines
+};
+
+struct PoseFindings {
+  std::vector<PoseFinding> listed;  // the first kMaxListed
+  std::size_t total = 0;
+  static constexpr std::size_t kMaxListed = 1000;
+  void add(std::size_t row, std::string what);
+};
+
+struct PoseCheckReport {
+  std::string kind;  // "pose CSV" or "rotary G-code"
+  std::string machine;
+  std::size_t rows = 0;  // poses, or moves
+  std::vector<PoseLayerCheck> layers;
+  PoseFindings off_tip, normals, off_surface, speed, outside, parse;
+  bool joints_checked = false;
+  machines::JointReport joints;
+
+  bool ok() const;
+  std::size_t crossing_count() const;
+};
+
+// The pose CSV against a robot-holds-substrate profile (required: it holds the nozzle tip and
+// axis). Throws InputError for a file that is not a pose CSV.
+PoseCheckReport check_pose_csv(std::string_view text, const std::string& file,
+                               const machines::MachineProfile& robot_cell);
+
+// A rotary file mapped back onto its cylinder (;ROTARY_AXIS_DIR/POINT, ;SUBSTRATE: header);
+// `machine` (optional) adds the envelope. Throws InputError when the header is incomplete.
+PoseCheckReport check_rotary_gcode(std::string_view text, const std::string& file,
+                                   const machines::MachineProfile* machine);
+
+nlohmann::json to_json(const PoseCheckReport& r);
+std::string to_text(const PoseCheckReport& r);
+
+// Shared by both checks: deposit radius per layer, strands and their contacts on the cylinder.
+void check_on_cylinder(const std::vector<CylinderSample>& samples, double touch_mm,
+                       PoseCheckReport& report);
+
+}  // namespace strand::post

@@ -1,0 +1,48 @@
+// Substrate parameters, declared once for the CLI (--substrate, --substrate-radius,
+// --substrate-length, --wrap, --arc-length-at) and for job files ("substrate": {"type",
+// "radius", "length", "wrap", "arc-length-at"}): every generator accepts them.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "slicer/cylinder_surface.h"
+#include "slicer/params.h"
+
+namespace strand::slicer {
+
+// How a flat pattern goes onto a closed substrate.
+enum class Wrap {
+  Patch,  // the flat specimen laid on the surface as it is (must fit the circumference)
+  Full,   // the design made periodic: a whole number of cells around, no seam defect
+};
+std::string to_string(Wrap w);
+
+struct SubstrateSpec {
+  std::string type = "cylinder";
+  double radius_mm = 0.0;
+  double length_mm = 0.0;
+  Wrap wrap = Wrap::Patch;
+  ArcLengthAt arc_length_at = ArcLengthAt::Surface;
+
+  bool operator==(const SubstrateSpec&) const = default;
+};
+
+// Keys as in the job's "substrate" object; messages read "substrate.radius = 0: must be > 0 (mm)".
+const ParamTable& substrate_table();
+// The command-line flag (without dashes) of a table key: radius -> substrate-radius,
+// type -> substrate, wrap -> wrap.
+std::string substrate_flag(const std::string& key);
+
+// Checks `given` (an object with the table's keys, as a job's "substrate" or the CLI flags
+// gathered under the table keys). nullopt when nothing was given (planar job). Throws
+// InputError naming every problem, including a radius or length without a type.
+std::optional<SubstrateSpec> substrate_from(const nlohmann::json& given);
+
+// The cylinder a job prints on; `layer_height_mm` places deposition arc lengths at the bead
+// centre (half a layer under the nozzle tip). With wrap full every layer keeps the first
+// layer's angles, so the lattice closes on itself on every layer.
+CylinderSpec cylinder_spec(const SubstrateSpec& s, double layer_height_mm);
+
+}  // namespace strand::slicer
