@@ -3,6 +3,7 @@
 // sections, processing instructions), charging the expansion budget before each append.
 #include "slicer/svg_entities.h"
 
+#include <algorithm>
 #include <cctype>
 #include <map>
 #include <vector>
@@ -16,8 +17,17 @@ namespace {
 constexpr std::size_t npos = std::string_view::npos;
 
 struct Entity {
+  std::string_view name;
   std::string_view value;  // replacement text as declared, references inside unexpanded
   bool external = false;   // SYSTEM or PUBLIC: never loaded (no file or network access)
+};
+
+// An entity's expansion in one context, kept for its later references.
+struct Expansion {
+  std::string text;
+  std::size_t cost = 0;  // budget the expansion charged (bytes plus nested references)
+  int external = 0;      // external references inside it
+  int height = 1;        // reference levels it spans, itself included
 };
 using EntityMap = std::map<std::string_view, Entity, std::less<>>;
 
@@ -73,9 +83,9 @@ std::size_t read_entity(std::string_view s, std::size_t i, EntityMap& entities) 
   j = skip_space(s, j + n);
   if (s[j] == '"' || s[j] == '\'') {
     const std::size_t close = s.find(s[j], j + 1);
-    if (close < end) entities.emplace(name, Entity{s.substr(j + 1, close - j - 1), false});
+    if (close < end) entities.emplace(name, Entity{name, s.substr(j + 1, close - j - 1), false});
   } else if (at(s, j, "SYSTEM") || at(s, j, "PUBLIC")) {
-    entities.emplace(name, Entity{{}, true});
+    entities.emplace(name, Entity{name, {}, true});
   }
   return end;
 }
@@ -192,16 +202,16 @@ class Expander {
   void append(std::string_view t, bool attr, int depth) {
     if (depth > 0) charge(t.size());
     if (!attr || depth == 0) {
-      out_.text.append(t);
+      sink_->append(t);
       return;
     }
     for (const char c : t) {
       if (c == '"' || c == '\'' || c == '<') {
         const std::string_view esc = c == '"' ? "&quot;" : c == '\'' ? "&apos;" : "&lt;";
         charge(esc.size());
-        out_.text.append(esc);
+        sink_->append(esc);
       } else {
-        out_.text.push_back(c);
+        sink_->push_back(c);
       }
     }
   }
@@ -210,7 +220,9 @@ class Expander {
     const auto said = [&](const std::string& what) {
       return InputError(origin_ + ": DTD entity &" + std::string(name) + "; " + what);
     };
-    if (depth >= kMaxEntityDepth) {
+    const auto memo = memo_.find({name, attr});
+    const int height = memo == memo_.end() ? 1 : memo->second.height;
+    if (depth + height > kMaxEntityDepth) {
       throw said("nests references deeper than " + std::to_string(kMaxEntityDepth) + " levels");
     }
     for (const std::string_view open : stack_) {
@@ -218,13 +230,37 @@ class Expander {
     }
     charge(1);
     if (depth == 0) ++out_.references;
+    deepest_ = std::max(deepest_, depth);
     if (e.external) {
       ++out_.external;
-      return;
+    } else if (memo != memo_.end()) {  // the same work again, charged as if redone
+      charge(memo->second.cost);
+      sink_->append(memo->second.text);
+      out_.external += memo->second.external;
+      deepest_ = std::max(deepest_, depth + height - 1);
+    } else {
+      memo_.emplace(std::pair{name, attr}, first_expansion(e, attr, depth));
     }
-    stack_.push_back(name);
+  }
+
+  // Expands `e` into the output once, recording what a later reference repeats.
+  Expansion first_expansion(const Entity& e, bool attr, int depth) {
+    Expansion x;
+    std::string* const outer = sink_;
+    const std::size_t used = used_;
+    const int external = out_.external, deepest = deepest_;
+    sink_ = &x.text;
+    deepest_ = depth;
+    stack_.push_back(e.name);
     expand(e.value, attr, depth + 1);
     stack_.pop_back();
+    sink_ = outer;
+    x.cost = used_ - used;
+    x.external = out_.external - external;
+    x.height = deepest_ - depth + 1;
+    deepest_ = std::max(deepest, deepest_);
+    sink_->append(x.text);
+    return x;
   }
 
   // The markup at s[i] == '<' copied (a tag's attribute values expanded); returns where
@@ -268,8 +304,13 @@ class Expander {
   const EntityMap& entities_;
   const std::string& origin_;
   ExpandedEntities out_;
+  std::string* sink_ = &out_.text;  // where expanded text goes (an entity's memo at first)
   std::size_t used_ = 0;
   std::vector<std::string_view> stack_;  // entities being expanded, outermost first
+  int deepest_ = 0;                      // deepest reference level reached so far
+  // Each entity is expanded once per context (content, attribute value): billion laughs
+  // then cost copies of what was built, not a walk per reference.
+  std::map<std::pair<std::string_view, bool>, Expansion> memo_;
 };
 
 }  // namespace

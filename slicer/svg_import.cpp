@@ -95,7 +95,7 @@ struct Importer {
   [[noreturn]] void over(const std::string& what, std::size_t limit,
                          const pugi::xml_node& n) const {
     throw InputError(origin + ": " + describe(n) + ": the drawing has more than " +
-                     short_number(static_cast<double>(limit)) + " " + what +
+                     std::to_string(limit) + " " + what +
                      " (the limit for one drawing)");
   }
   bool enter(const pugi::xml_node& n, const Context& parent, Context& c);
@@ -356,9 +356,9 @@ pugi::xml_document parse(std::string_view text, const std::string& origin) {
   const std::size_t markup = static_cast<std::size_t>(std::count(text.begin(), text.end(), '<')) +
                              static_cast<std::size_t>(std::count(text.begin(), text.end(), '='));
   if (markup > kMaxSvgMarkup) {
-    throw InputError(origin + ": the document has " + short_number(static_cast<double>(markup)) +
+    throw InputError(origin + ": the document has " + std::to_string(markup) +
                      " '<' and '=' (elements and attributes; at most " +
-                     short_number(static_cast<double>(kMaxSvgMarkup)) + ")");
+                     std::to_string(kMaxSvgMarkup) + ")");
   }
   pugi::xml_document doc;
   const auto parsed = doc.load_buffer(text.data(), text.size());

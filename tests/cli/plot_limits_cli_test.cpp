@@ -78,7 +78,7 @@ std::vector<Case> cases() {
        "<g>: elements nest deeper than 256 levels"},
       {"nested_transforms", nested("<g transform='translate(0.001 0)'>", "</g>", 10000), "",
        "nest deeper than 256"},
-      {"use_doubling", use_doubling(), "", "more than 1e+06 elements (each <use> copy counted)"},
+      {"use_doubling", use_doubling(), "", "more than 500000 elements (each <use> copy counted)"},
       {"bezier_1e308", svg("<path d='M0 0 C1e308 0 0 10 10 10' stroke='black' fill='none'/>"), "",
        "<path>: a coordinate is 1e+308 mm after transforms (at most 1e+07 mm"},
       {"not_finite",
@@ -106,9 +106,9 @@ std::vector<Case> cases() {
       {"entity_cycle", "<!DOCTYPE svg [<!ENTITY a '&b;'><!ENTITY b '&a;'>]>" + svg("&a;"), "",
        "refers to itself"},
       {"markup_count", svg(repeat("<g/>", 4000001)), "",
-       "'<' and '=' (elements and attributes; at most 4e+06)"},
+       "'<' and '=' (elements and attributes; at most 4000000)"},
       {"path_pieces", svg("<path stroke='black' d='M0 0" + repeat("h1", 2000001) + "'/>"), "",
-       "more than 2e+06 curve pieces"},
+       "more than 2000000 curve pieces"},
       {"fit_scale", svg("<line x2='1e-6' stroke='black'/>"), "--fit 100x100", "plot.fit = 100x100"},
   };
 }

@@ -121,5 +121,16 @@ TEST(SvgEntities, CyclesAndDeepNestingAreRefused) {
   EXPECT_EQ(expanded_body(subset, "<svg>" + ok + "</svg>"), "<svg>x</svg>");
 }
 
+TEST(SvgEntities, ARepeatedEntityKeepsItsDepthWhereverItIsReferencedAgain) {
+  // d8 spans 9 levels: fine at the top, 18 levels deep when reached again through w0..w8
+  std::string subset = "<!ENTITY d0 \"x\">\n<!ENTITY w0 \"&d8;\">\n";
+  for (int i = 1; i <= 8; ++i) {
+    const std::string n = std::to_string(i), p = std::to_string(i - 1);
+    subset += "<!ENTITY d" + n + " \"&d" + p + ";\">\n<!ENTITY w" + n + " \"&w" + p + ";\">\n";
+  }
+  EXPECT_EQ(expanded_body(subset, "<svg>&d8;&d8;&w0;</svg>"), "<svg>xxx</svg>");
+  EXPECT_THROW(expand_entities(with_subset(subset, "<svg>&d8;&w8;</svg>"), "t"), InputError);
+}
+
 }  // namespace
 }  // namespace strand::slicer
