@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "machines/plotter_kinematics.h"
 #include "postprocess/plot/fill.h"
@@ -78,6 +79,13 @@ int rule_pen(const slicer::SvgShape& s, const std::vector<Rule>& rules) {
   return 0;
 }
 
+// A count or factor for a message: three significant digits ("1.63e+302", "5.26e+07").
+std::string count_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
 // Exact bounds of the drawing under m (a similarity: bounds map onto bounds).
 std::pair<Vec2, Vec2> bounds_of(const slicer::SvgDrawing& d, const Affine& m) {
   Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
@@ -108,7 +116,7 @@ Affine placement(const slicer::SvgDrawing& d, const machines::MachineProfile& m,
       throw InputError("plot.fit = " + slicer::short_number(o.fit_mm->x()) + "x" +
                        slicer::short_number(o.fit_mm->y()) + ": the drawing is only " +
                        slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) +
-                       " mm; fitting it would scale it " + slicer::short_number(s) +
+                       " mm; fitting it would scale it " + count_text(s) +
                        " times (at most " + slicer::short_number(kMaxFitScale) + ")");
     }
   }
@@ -160,7 +168,7 @@ void check_outline_budget(const slicer::SvgDrawing& d, double scale, const PlotO
   if (points > kMaxPlotPoints) {
     throw InputError("plot.tolerance = " + slicer::short_number(o.tolerance_mm) +
                      ": the curves would flatten into up to " +
-                     slicer::short_number(std::round(points)) + " points (at most " +
+                     count_text(points) + " points (at most " +
                      slicer::short_number(kMaxPlotPoints) +
                      "); use a larger tolerance, a smaller scale or a simpler drawing");
   }
@@ -218,7 +226,7 @@ void check_fill_budget(const slicer::SvgDrawing& d,
   }
   if (points > kMaxPlotPoints) {
     throw InputError("plot.hatch-spacing: the outlines and fills would draw up to " +
-                     slicer::short_number(std::round(points)) + " points (at most " +
+                     count_text(points) + " points (at most " +
                      slicer::short_number(kMaxPlotPoints) +
                      "); use a larger --hatch-spacing, --fill outline or a smaller drawing");
   }
