@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <pugixml.hpp>
 
 #include "slicer/input_error.h"
@@ -36,11 +37,22 @@ struct Style {
 struct Context {
   Affine to_mm;
   Style style;
-  std::vector<std::string> group_ids;
-  std::vector<std::string> layer_labels;
+  // Shared, never changed once made: a context is copied for every element (and every <use>
+  // copy), the lists only when a group adds to them.
+  std::shared_ptr<const std::vector<std::string>> group_ids = std::make_shared<std::vector<std::string>>();
+  std::shared_ptr<const std::vector<std::string>> layer_labels = group_ids;
   Vec2 viewport = Vec2::Zero();  // the nearest viewport's size in user units (for percentages)
   int depth = 0;                 // elements and <use> references above this one
 };
+
+std::shared_ptr<const std::vector<std::string>> prepended(const std::vector<std::string>& v,
+                                                          const char* first) {
+  auto out = std::make_shared<std::vector<std::string>>();
+  out->reserve(v.size() + 1);
+  out->push_back(first);
+  out->insert(out->end(), v.begin(), v.end());
+  return out;
+}
 
 std::string trim(std::string_view s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
@@ -170,9 +182,9 @@ void Importer::walk(const pugi::xml_node& n, const Context& parent) {
   if (!enter(n, parent, c)) return;
   const std::string name = local_name(n);
   if (name == "g" || name == "a") {
-    if (const auto id = n.attribute("id")) c.group_ids.insert(c.group_ids.begin(), id.value());
+    if (const auto id = n.attribute("id")) c.group_ids = prepended(*c.group_ids, id.value());
     if (std::string(n.attribute("inkscape:groupmode").value()) == "layer") {
-      c.layer_labels.insert(c.layer_labels.begin(), n.attribute("inkscape:label").value());
+      c.layer_labels = prepended(*c.layer_labels, n.attribute("inkscape:label").value());
     }
     walk_children(n, c);
   } else if (name == "switch") {
@@ -301,8 +313,8 @@ void Importer::shape(const pugi::xml_node& n, const Context& c, std::vector<SubP
   s.evenodd = c.style.evenodd;
   s.stroke_color = s.stroked ? normalise_color(c.style.stroke) : "";
   s.fill_color = s.filled ? normalise_color(c.style.fill) : "";
-  s.group_ids = c.group_ids;
-  s.layer_labels = c.layer_labels;
+  s.group_ids = *c.group_ids;
+  s.layer_labels = *c.layer_labels;
   if (!s.stroked && !s.filled) return;
   for (const auto& p : paths) pieces += p.pieces.size() + 1;
   if (pieces > kMaxSvgPieces) over("curve pieces", kMaxSvgPieces, n);
@@ -328,8 +340,8 @@ void Importer::text(const pugi::xml_node& n, const TextStyle& parent_text, const
   t.filled = c.style.fill != "none" && !c.style.fill.empty();
   t.stroke_color = t.stroked ? normalise_color(c.style.stroke) : "";
   t.fill_color = t.filled ? normalise_color(c.style.fill) : "";
-  t.group_ids = c.group_ids;
-  t.layer_labels = c.layer_labels;
+  t.group_ids = *c.group_ids;
+  t.layer_labels = *c.layer_labels;
   // the reader applies the element's own font properties (relative sizes must apply once)
   t.chars = read_text_chars(n, parent_text, &properties, origin, kMaxSvgTextChars - text_chars);
   text_chars += t.chars.size();

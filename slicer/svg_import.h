@@ -20,7 +20,7 @@ inline constexpr int kMaxSvgDepth = 256;
 // attributes pugixml would hold in memory, counted before parsing.
 inline constexpr std::size_t kMaxSvgMarkup = 4'000'000;
 // Elements visited, every <use> copy counted again (nested <use> grow exponentially).
-inline constexpr std::size_t kMaxSvgElements = 500'000;
+inline constexpr std::size_t kMaxSvgElements = 250'000;
 // Bytes of attribute values read, every <use> copy counted again.
 inline constexpr std::size_t kMaxSvgAttributeBytes = std::size_t{256} << 20;
 // Curve pieces (lines, cubics, arcs) and sub-paths of all shapes together.
