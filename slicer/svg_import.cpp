@@ -39,7 +39,8 @@ struct Context {
   Style style;
   // Shared, never changed once made: a context is copied for every element (and every <use>
   // copy), the lists only when a group adds to them.
-  std::shared_ptr<const std::vector<std::string>> group_ids = std::make_shared<std::vector<std::string>>();
+  std::shared_ptr<const std::vector<std::string>> group_ids =
+      std::make_shared<std::vector<std::string>>();
   std::shared_ptr<const std::vector<std::string>> layer_labels = group_ids;
   Vec2 viewport = Vec2::Zero();  // the nearest viewport's size in user units (for percentages)
   int depth = 0;                 // elements and <use> references above this one

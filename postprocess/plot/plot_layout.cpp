@@ -116,8 +116,8 @@ Affine placement(const slicer::SvgDrawing& d, const machines::MachineProfile& m,
       throw InputError("plot.fit = " + slicer::short_number(o.fit_mm->x()) + "x" +
                        slicer::short_number(o.fit_mm->y()) + ": the drawing is only " +
                        slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) +
-                       " mm; fitting it would scale it " + count_text(s) +
-                       " times (at most " + slicer::short_number(kMaxFitScale) + ")");
+                       " mm; fitting it would scale it " + count_text(s) + " times (at most " +
+                       slicer::short_number(kMaxFitScale) + ")");
     }
   }
   const auto [alo, ahi] = machines::drawable_area(m.plotter);
@@ -167,9 +167,8 @@ void check_outline_budget(const slicer::SvgDrawing& d, double scale, const PlotO
   }
   if (points > kMaxPlotPoints) {
     throw InputError("plot.tolerance = " + slicer::short_number(o.tolerance_mm) +
-                     ": the curves would flatten into up to " +
-                     count_text(points) + " points (at most " +
-                     slicer::short_number(kMaxPlotPoints) +
+                     ": the curves would flatten into up to " + count_text(points) +
+                     " points (at most " + slicer::short_number(kMaxPlotPoints) +
                      "); use a larger tolerance, a smaller scale or a simpler drawing");
   }
 }
