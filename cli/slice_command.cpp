@@ -40,6 +40,7 @@ std::string preview_of(const SliceResult& r, const SliceSettings& s, const std::
   post::PreviewScene scene =
       post::preview_scene(post::parse_gcode(r.produced.gcode).program, s.arc_tolerance_mm);
   scene.substrate = slicer::to_triangle_mesh(r.part.mesh);
+  scene.substrate_hides_paths = !s.onto.empty();  // a filled part is drawn under its fill
   const slicer::Vec2 centre = machine.volume.part_center_mm;
   for (auto& v : scene.substrate.vertices_mm) v += slicer::Vec3(centre.x(), centre.y(), 0.0);
   post::PreviewFileOptions o;

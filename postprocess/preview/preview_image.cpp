@@ -133,8 +133,8 @@ DepthMap draw_substrate(cairo_t* cr, const Panel& panel, const PreviewScene& s, 
 // layers lie outside earlier ones, so path order needs no depth sort.
 void draw_paths(cairo_t* cr, const Panel& panel, const PreviewScene& s, const ImageOptions& o,
                 int width_px, int height_px) {
-  const DepthMap depth =
-      is_3d(s) ? draw_substrate(cr, panel, s, width_px, height_px) : DepthMap{};
+  DepthMap depth = is_3d(s) ? draw_substrate(cr, panel, s, width_px, height_px) : DepthMap{};
+  if (!s.substrate_hides_paths) depth = DepthMap{};
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   const double bead_px = std::max(1.0, (s.bead_width_mm > 0 ? s.bead_width_mm : 0.4) * panel.scale);
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);

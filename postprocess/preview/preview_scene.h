@@ -35,6 +35,9 @@ struct PreviewScene {
   // The substrate the paths lie on (a cylinder, a mesh patch) in the paths' frame, drawn
   // translucent under them; empty for planar files.
   slicer::TriangleMesh substrate;
+  // False when the paths lie inside it (a part that `strand slice` filled): the mesh is then
+  // a backdrop every path is drawn over, not a solid that hides what lies behind it.
+  bool substrate_hides_paths = true;
   // What layer_z_mm holds, for labels: "z" (planar heights) or "offset" (the nozzle's
   // distance from a substrate).
   std::string layer_value = "z";

@@ -13,10 +13,12 @@ seeds() {  # target -> seed files
     gcode_fuzz) ls "$src"/tests/golden/*.gcode ;;
     json_fuzz) ls "$src"/samples/*.json "$src"/samples/sweeps/*.json "$src"/machines/profiles/*.json ;;
     where_fuzz) ;;
+    curved_fuzz) ls "$src"/tests/fuzz/seeds/curved_fuzz/* ;;
+    mesh_fuzz) ls "$src"/tests/fuzz/seeds/mesh_fuzz/* ;;
     image_fuzz) ls "$src"/samples/plot/*.png ;;
   esac
 }
-for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz image_fuzz; do
+for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz image_fuzz; do
   exe="$build/tests/fuzz/$target"
   regressions="$src/tests/fuzz/regressions/$target"
   corpus="$build/fuzz-corpus/$target"

@@ -164,6 +164,22 @@ TEST(PreviewImage, SubstrateHidesTheFarSideOfASleeve) {
   }
 }
 
+// A part filled by `strand slice` lies inside its mesh: the mesh is a backdrop, so the pass
+// the cylinder would hide as a substrate is drawn, over the still visible solid.
+TEST(PreviewImage, APartsMeshDoesNotHideItsFill) {
+  ImageOptions o;
+  o.width_px = 500;
+  o.height_px = 400;
+  o.scale_bar = false;
+  o.view = PreviewView::Iso;
+  PreviewScene scene = top_and_bottom();
+  scene.substrate_hides_paths = false;
+  const std::string png = render_png(scene, o);
+  EXPECT_GT(pixels_of(png, slicer::Feature::Node), 500) << "the pass under the cylinder shows";
+  EXPECT_GT(pixels_of(png, slicer::Feature::Ligament), 500);
+  EXPECT_GT(strand::testing::colour_spot(png, 222, 222, 230, 60).count, 50000) << "mesh drawn";
+}
+
 TEST(PreviewImage, SameSceneSameBytes) {
   EXPECT_EQ(render_png(squares(), known_scale(-1)), render_png(squares(), known_scale(-1)));
 }

@@ -1,0 +1,53 @@
+// Fuzz target: any bytes as a part or substrate mesh file, in the format the first byte picks
+// (STL, OBJ, PLY, OFF through OpenMesh; glTF, GLB through tinygltf), read, placed and prepared
+// with and without --repair, as `strand slice` does. The readers take a path, so each input is
+// written to a file in a private temporary directory first.
+#include <unistd.h>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "slicer/input_error.h"
+#include "slicer/mesh_check.h"
+#include "slicer/mesh_io.h"
+
+namespace {
+
+const std::string& scratch_dir() {
+  static const std::string dir = [] {
+    std::string pattern = "/tmp/strand-mesh-fuzz-XXXXXX";
+    if (!mkdtemp(pattern.data())) std::abort();
+    return pattern;
+  }();
+  return dir;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace strand;
+  static const std::array<const char*, 6> kExtensions = {".stl", ".obj", ".ply", ".off", ".gltf", ".glb"};
+  if (size == 0) return 0;
+  const std::string path = scratch_dir() + "/part" + kExtensions[data[0] % kExtensions.size()];
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));
+  }
+  try {
+    const slicer::Mesh read = slicer::read_mesh_file(path);
+    const slicer::Mesh placed = slicer::place_mesh(read, slicer::MeshPlacement{});
+    for (const bool repair : {false, true}) {
+      try {
+        slicer::prepare_mesh(placed, repair, "part");
+      } catch (const InputError&) {
+      }
+    }
+  } catch (const InputError&) {
+  }
+  unlink(path.c_str());
+  return 0;
+}
