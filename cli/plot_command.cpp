@@ -26,7 +26,7 @@ const slicer::ParamTable& plot_table() {
           {"fit", ParamType::Size2, "mm", "fit the drawing into WxH keeping its aspect, centred in the drawable area", 1e-3},
           {"scale", ParamType::Number, "", "times the SVG's physical size (ignored with --fit)", 0.0, true, 1e4, false, 1.0},
           {"offset", ParamType::NumberList, "mm", "X,Y shift after centring", std::nullopt, false, std::nullopt, false, nlohmann::json::array({0, 0})},
-          {"tolerance", ParamType::Number, "mm", "end-to-end error bound: curve flattening + kinematic bow + rounding", 0.0, true, 5.0, false, 0.05},
+          {"tolerance", ParamType::Number, "mm", "end-to-end error bound: curve flattening + kinematic bow + rounding", 0.001, false, 5.0, false, 0.05},
           {"pens", ParamType::Text, "", "pen rules KEY=PEN,... (KEY: group id, Inkscape layer label or colour); default: groups m1..m4 -> pens 1..4, else pen 1", std::nullopt, false, std::nullopt, false, ""},
           {"fill", ParamType::Text, "", "what a filled shape gets: its outline plus hatch lines or concentric rings, its outline only, or nothing", std::nullopt, false, std::nullopt, false, "hatch", "", {"hatch", "concentric", "outline", "none"}},
           {"hatch-angle", ParamType::NumberList, "deg", "angle of the hatch lines, one value or one per pen (pen 1 first, the last repeats)", -180.0, false, 180.0, false, nlohmann::json::array({45})},

@@ -52,9 +52,14 @@ slicer::SvgText text_element(const std::string& text, const nlohmann::json& v) {
   t.fill_color = "#000000";
   std::string s = text;
   for (std::size_t at = s.find("\\n"); at != std::string::npos; at = s.find("\\n", at + 1)) s.replace(at, 2, "\n");
+  const std::u32string chars = slicer::utf8_to_u32(s);
+  if (chars.size() > slicer::kMaxSvgTextChars) {
+    throw InputError("text: the string has " + std::to_string(chars.size()) +
+                     " characters (at most " + std::to_string(slicer::kMaxSvgTextChars) + ")");
+  }
   bool line_start = true;
   int line = 0;
-  for (char32_t c : slicer::utf8_to_u32(s)) {
+  for (char32_t c : chars) {
     if (c == U'\n') {
       line_start = true;
       ++line;

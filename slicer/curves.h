@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <utility>
 #include <vector>
 
 #include "slicer/geometry.h"
@@ -48,6 +49,10 @@ struct SubPath {
 
 using Polyline = std::vector<Vec2>;
 
+// Drawings live within this distance of their origin (10 km): a coordinate beyond it, after
+// every transform, is refused as absurd before any curve is flattened, mm.
+inline constexpr double kMaxCoordinateMm = 1e7;
+
 SubPath transformed(const SubPath& s, const Affine& m);
 // Point of an arc piece at parameter t (radians).
 Vec2 arc_point(const CurvePiece& arc, double t_rad);
@@ -61,5 +66,19 @@ Vec2 cubic_point(const Vec2& from, const CurvePiece& c, double u);
 // arcs use n equal steps with sigma_max(axes) * (1 - cos(step / 2)) <= tolerance (the sagitta
 // of a unit circle step, stretched at most by the largest singular value of the axes).
 Polyline flatten(const SubPath& s, double tolerance_mm);
+
+// Upper bound on the points flatten(s, tolerance_mm) returns, from the control points alone
+// (no flattening): a cubic whose largest second difference of control points is D needs at
+// most 2^ceil(log4(D / tolerance)) pieces, since each split quarters D and a piece stops once
+// its inner control points, within D of the chord, are within the tolerance.
+double flatten_point_bound(const SubPath& s, double tolerance_mm);
+
+// Exact axis-aligned bounds {min, max} of the curve (cubic and arc extrema solved, not
+// sampled).
+std::pair<Vec2, Vec2> curve_bounds(const SubPath& s);
+
+// The largest |x| or |y| of the sub-path's control points (arcs: centre plus semi-axes);
+// infinite when any number is not finite.
+double max_abs_coordinate(const SubPath& s);
 
 }  // namespace strand::slicer

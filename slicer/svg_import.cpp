@@ -1,14 +1,20 @@
 // SVG document traversal on pugixml: styles and their inheritance, viewports, transforms,
-// basic shapes as curves, `use` references, hidden and skipped elements.
+// basic shapes as curves, `use` references and symbols, hidden and skipped elements, and the
+// drawing's limits (depth, elements, attribute bytes, pieces, text, coordinates).
 #include "slicer/svg_import.h"
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
+#include <cmath>
+#include <cstring>
 #include <map>
+#include <memory>
 #include <pugixml.hpp>
 
 #include "slicer/input_error.h"
+#include "slicer/params.h"
+#include "slicer/svg_entities.h"
+#include "slicer/svg_shapes.h"
 #include "slicer/svg_syntax.h"
 #include "slicer/svg_text_reader.h"
 #include "slicer/units.h"
@@ -18,8 +24,6 @@ namespace strand::slicer {
 namespace {
 
 constexpr double kMmPerPx = kMmPerInch / 96.0;
-// `use` chains deeper than this are treated as a reference cycle.
-constexpr int kMaxUseDepth = 32;
 
 // Inherited presentation state (SVG 1.1 property inheritance).
 struct Style {
@@ -33,31 +37,23 @@ struct Style {
 struct Context {
   Affine to_mm;
   Style style;
-  std::vector<std::string> group_ids;
-  std::vector<std::string> layer_labels;
-  int use_depth = 0;
+  // Shared, never changed once made: a context is copied for every element (and every <use>
+  // copy), the lists only when a group adds to them.
+  std::shared_ptr<const std::vector<std::string>> group_ids =
+      std::make_shared<std::vector<std::string>>();
+  std::shared_ptr<const std::vector<std::string>> layer_labels = group_ids;
+  Vec2 viewport = Vec2::Zero();  // the nearest viewport's size in user units (for percentages)
+  int depth = 0;                 // elements and <use> references above this one
 };
 
-struct Importer {
-  std::string origin;
-  std::map<std::string, pugi::xml_node> by_id;
-  SvgDrawing out;
-  std::map<std::string, int> skipped;
-
-  void walk(const pugi::xml_node& n, const Context& parent);
-  void walk_children(const pugi::xml_node& n, const Context& c) {
-    for (const auto& child : n.children()) {
-      if (child.type() == pugi::node_element) walk(child, c);
-    }
-  }
-  void shape(const pugi::xml_node& n, const Context& c, std::vector<SubPath> paths);
-  void text(const pugi::xml_node& n, const TextStyle& parent_text, const Context& c);
-  double len(const pugi::xml_node& n, const char* attr, double fallback = 0.0) const {
-    const auto a = n.attribute(attr);
-    if (!a) return fallback;
-    return parse_length_px(a.value(), origin + ": <" + std::string(n.name()) + "> " + attr);
-  }
-};
+std::shared_ptr<const std::vector<std::string>> prepended(const std::vector<std::string>& v,
+                                                          const char* first) {
+  auto out = std::make_shared<std::vector<std::string>>();
+  out->reserve(v.size() + 1);
+  out->push_back(first);
+  out->insert(out->end(), v.begin(), v.end());
+  return out;
+}
 
 std::string trim(std::string_view s) {
   while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
@@ -68,8 +64,9 @@ std::string trim(std::string_view s) {
 // Presentation attributes first, then the style attribute (which wins).
 std::map<std::string, std::string> properties(const pugi::xml_node& n) {
   std::map<std::string, std::string> p;
-  for (const char* k : {"fill", "stroke", "fill-rule", "display", "visibility", "font-size", "font-family",
-                        "font-weight", "font-style", "text-anchor", "xml:space"}) {
+  for (const char* k : {"fill", "stroke", "fill-rule", "display", "visibility", "font-size",
+                        "font-family", "font-weight", "font-style", "text-anchor", "xml:space",
+                        "clip-path", "mask", "marker-start", "marker-mid", "marker-end"}) {
     if (const auto a = n.attribute(k)) p[k] = trim(a.value());
   }
   std::string_view style = n.attribute("style").value();
@@ -90,125 +87,75 @@ std::string local_name(const pugi::xml_node& n) {
   return colon == std::string::npos ? name : name.substr(colon + 1);
 }
 
-// viewBox + preserveAspectRatio: user space of a viewport of size w x h (px) into its
-// parent's user space.
-Affine viewport_transform(const pugi::xml_node& n, double w, double h, const std::string& origin) {
-  Affine m;
-  const auto vb_attr = n.attribute("viewBox");
-  if (!vb_attr) return m;
-  const auto vb = parse_number_list(vb_attr.value());
-  if (vb.size() != 4 || vb[2] <= 0 || vb[3] <= 0) {
-    throw InputError(origin + ": viewBox = \"" + std::string(vb_attr.value()) + "\": must be 4 numbers with width and height > 0");
+// "<path id="leaf">" for messages (the id cut short).
+std::string describe(const pugi::xml_node& n) {
+  std::string d = "<" + local_name(n);
+  if (const auto id = n.attribute("id"))
+    d += " id=\"" + std::string(id.value()).substr(0, 40) + "\"";
+  return d + ">";
+}
+
+Affine translation(const Vec2& v) { return {Eigen::Matrix2d::Identity(), v}; }
+
+struct Importer {
+  std::string origin;
+  std::map<std::string, pugi::xml_node> by_id;
+  SvgDrawing out;
+  std::map<std::string, int> skipped;
+  std::vector<pugi::xml_node> uses;  // <use> targets being drawn, outermost first
+  std::size_t elements = 0, attribute_bytes = 0, pieces = 0, text_chars = 0;
+
+  [[noreturn]] void over(const std::string& what, std::size_t limit,
+                         const pugi::xml_node& n) const {
+    throw InputError(origin + ": " + describe(n) + ": the drawing has more than " +
+                     std::to_string(limit) + " " + what +
+                     " (the limit for one drawing)");
   }
-  double sx = w / vb[2], sy = h / vb[3];
-  std::string par = trim(n.attribute("preserveAspectRatio").value());
-  if (par.empty()) par = "xMidYMid meet";
-  double ax = 0.5, ay = 0.5;
-  if (par.rfind("none", 0) != 0) {
-    const bool slice = par.find("slice") != std::string::npos;
-    sx = sy = slice ? std::max(sx, sy) : std::min(sx, sy);
-    if (par.find("xMin") != std::string::npos) ax = 0.0;
-    if (par.find("xMax") != std::string::npos) ax = 1.0;
-    if (par.find("YMin") != std::string::npos) ay = 0.0;
-    if (par.find("YMax") != std::string::npos) ay = 1.0;
+  bool enter(const pugi::xml_node& n, const Context& parent, Context& c);
+  bool inherit(const pugi::xml_node& n, Context& c);
+  void walk(const pugi::xml_node& n, const Context& parent);
+  void walk_children(const pugi::xml_node& n, const Context& c) {
+    for (const auto& child : n.children()) {
+      if (child.type() == pugi::node_element) walk(child, c);
+    }
   }
-  m.linear << sx, 0, 0, sy;
-  m.offset = Vec2(-vb[0] * sx + ax * (w - vb[2] * sx), -vb[1] * sy + ay * (h - vb[3] * sy));
-  return m;
-}
-
-SubPath polyline_path(const std::vector<double>& v, bool closed) {
-  SubPath s;
-  if (v.size() < 4) return s;
-  s.start = Vec2(v[0], v[1]);
-  for (std::size_t i = 2; i + 1 < v.size(); i += 2) {
-    CurvePiece c;
-    c.p[0] = Vec2(v[i], v[i + 1]);
-    s.pieces.push_back(c);
+  void walk_switch(const pugi::xml_node& n, const Context& c);
+  void use(const pugi::xml_node& n, Context c);
+  void viewport(const pugi::xml_node& n, Context c, const Vec2& size);
+  bool geometry(const pugi::xml_node& n, const std::string& name, const Context& c,
+                std::vector<SubPath>& paths);
+  void shape(const pugi::xml_node& n, const Context& c, std::vector<SubPath> paths);
+  void text(const pugi::xml_node& n, const TextStyle& parent_text, const Context& c);
+  // A length in user units; "P%" is P percent of `percent_of`.
+  double len(const pugi::xml_node& n, const char* attr, double percent_of,
+             double fallback = 0.0) const {
+    const auto a = n.attribute(attr);
+    if (!a) return fallback;
+    const std::string v = trim(a.value());
+    const std::string what = origin + ": " + describe(n) + " " + attr;
+    if (!v.empty() && v.back() == '%')
+      return parse_length_px(v.substr(0, v.size() - 1), what) * percent_of / 100.0;
+    return parse_length_px(v, what);
   }
-  if (closed) {
-    CurvePiece c;
-    c.p[0] = s.start;
-    s.pieces.push_back(c);
-    s.closed = true;
+};
+
+// Counts the element against the drawing's limits, then applies its style and transform;
+// false when it is display:none.
+bool Importer::enter(const pugi::xml_node& n, const Context& parent, Context& c) {
+  c = parent;
+  c.depth = parent.depth + 1;
+  if (c.depth > kMaxSvgDepth) {
+    throw InputError(origin + ": " + describe(n) + ": elements nest deeper than " +
+                     std::to_string(kMaxSvgDepth) + " levels (each <use> counts as one)");
   }
-  return s;
+  if (++elements > kMaxSvgElements) over("elements (each <use> copy counted)", kMaxSvgElements, n);
+  for (const auto& a : n.attributes()) attribute_bytes += std::strlen(a.value());
+  if (attribute_bytes > kMaxSvgAttributeBytes)
+    over("bytes of attributes (each <use> copy counted)", kMaxSvgAttributeBytes, n);
+  return inherit(n, c);
 }
 
-SubPath ellipse_path(const Vec2& c, double rx, double ry) {
-  CurvePiece arc;
-  arc.kind = CurveKind::Arc;
-  arc.center = c;
-  arc.axes << rx, 0, 0, ry;
-  arc.t0_rad = 0.0;
-  arc.sweep_rad = kTwoPi;
-  return {c + Vec2(rx, 0), {arc}, true};
-}
-
-// Rect with rounded corners: rx/ry default to each other and clamp to half the sides.
-SubPath rect_path(double x, double y, double w, double h, double rx, double ry) {
-  rx = std::min(rx, w / 2);
-  ry = std::min(ry, h / 2);
-  if (rx <= 0 || ry <= 0) return polyline_path({x, y, x + w, y, x + w, y + h, x, y + h}, true);
-  SubPath s{Vec2(x + rx, y), {}, true};
-  const auto line = [&](double px, double py) {
-    CurvePiece c;
-    c.p[0] = Vec2(px, py);
-    s.pieces.push_back(c);
-  };
-  const auto corner = [&](double cx, double cy, double t0) {
-    CurvePiece a;
-    a.kind = CurveKind::Arc;
-    a.center = Vec2(cx, cy);
-    a.axes << rx, 0, 0, ry;
-    a.t0_rad = t0;
-    a.sweep_rad = kPi / 2;
-    s.pieces.push_back(a);
-  };
-  line(x + w - rx, y);
-  corner(x + w - rx, y + ry, -kPi / 2);
-  line(x + w, y + h - ry);
-  corner(x + w - rx, y + h - ry, 0.0);
-  line(x + rx, y + h);
-  corner(x + rx, y + h - ry, kPi / 2);
-  line(x, y + ry);
-  corner(x + rx, y + ry, kPi);
-  return s;
-}
-
-void Importer::shape(const pugi::xml_node& n, const Context& c, std::vector<SubPath> paths) {
-  SvgShape s;
-  s.element = local_name(n);
-  s.stroked = c.style.stroke != "none" && !c.style.stroke.empty();
-  s.filled = c.style.fill != "none" && !c.style.fill.empty();
-  if (s.element == "line" || s.element == "polyline") s.filled = s.filled && s.element != "line";
-  s.evenodd = c.style.evenodd;
-  s.stroke_color = s.stroked ? normalise_color(c.style.stroke) : "";
-  s.fill_color = s.filled ? normalise_color(c.style.fill) : "";
-  s.group_ids = c.group_ids;
-  s.layer_labels = c.layer_labels;
-  for (auto& p : paths) {
-    if (!p.pieces.empty()) s.paths.push_back(transformed(p, c.to_mm));
-  }
-  if (!s.paths.empty() && (s.stroked || s.filled)) out.shapes.push_back(std::move(s));
-}
-
-void Importer::text(const pugi::xml_node& n, const TextStyle& parent_text, const Context& c) {
-  SvgText t;
-  t.to_mm = c.to_mm;
-  t.stroked = c.style.stroke != "none" && !c.style.stroke.empty();
-  t.filled = c.style.fill != "none" && !c.style.fill.empty();
-  t.stroke_color = t.stroked ? normalise_color(c.style.stroke) : "";
-  t.fill_color = t.filled ? normalise_color(c.style.fill) : "";
-  t.group_ids = c.group_ids;
-  t.layer_labels = c.layer_labels;
-  // the reader applies the element's own font properties (relative sizes must apply once)
-  t.chars = read_text_chars(n, parent_text, &properties, origin);
-  if (!t.chars.empty()) out.texts.push_back(std::move(t));
-}
-
-// Applies the element's style and transform to `c`; false when it is display:none.
-bool inherit(const pugi::xml_node& n, Context& c, const std::string& origin) {
+bool Importer::inherit(const pugi::xml_node& n, Context& c) {
   const auto props = properties(n);
   if (props.count("display") && props.at("display") == "none") return false;
   if (props.count("fill")) c.style.fill = props.at("fill");
@@ -216,6 +163,11 @@ bool inherit(const pugi::xml_node& n, Context& c, const std::string& origin) {
   if (props.count("fill-rule")) c.style.evenodd = props.at("fill-rule") == "evenodd";
   if (props.count("visibility")) c.style.visible = props.at("visibility") == "visible";
   inherit_text_style(props, c.style.text, origin);
+  for (const char* ignored : {"clip-path", "mask", "marker-start", "marker-mid", "marker-end"}) {
+    const auto p = props.find(ignored);
+    if (p != props.end() && p->second != "none")
+      ++skipped[std::string(ignored).substr(0, 6) == "marker" ? "marker" : ignored];
+  }
   if (const auto t = n.attribute("transform")) {
     try {
       c.to_mm = compose(c.to_mm, parse_transform(t.value()));
@@ -227,142 +179,243 @@ bool inherit(const pugi::xml_node& n, Context& c, const std::string& origin) {
 }
 
 void Importer::walk(const pugi::xml_node& n, const Context& parent) {
+  Context c;
+  if (!enter(n, parent, c)) return;
   const std::string name = local_name(n);
-  Context c = parent;
-  if (!inherit(n, c, origin)) return;
-  if (name == "g" || name == "a" || name == "switch") {
-    if (const auto id = n.attribute("id")) c.group_ids.insert(c.group_ids.begin(), id.value());
+  if (name == "g" || name == "a") {
+    if (const auto id = n.attribute("id")) c.group_ids = prepended(*c.group_ids, id.value());
     if (std::string(n.attribute("inkscape:groupmode").value()) == "layer") {
-      c.layer_labels.insert(c.layer_labels.begin(), n.attribute("inkscape:label").value());
+      c.layer_labels = prepended(*c.layer_labels, n.attribute("inkscape:label").value());
     }
     walk_children(n, c);
-    return;
-  }
-  if (name == "svg") {  // nested viewport
-    const double w = len(n, "width", 0), h = len(n, "height", 0);
-    c.to_mm = compose(c.to_mm, Affine{Eigen::Matrix2d::Identity(), Vec2(len(n, "x"), len(n, "y"))});
-    c.to_mm = compose(c.to_mm, viewport_transform(n, w, h, origin));
-    walk_children(n, c);
-    return;
-  }
-  if (name == "use") {
-    std::string href = n.attribute("href").value();
-    if (href.empty()) href = n.attribute("xlink:href").value();
-    if (href.size() < 2 || href[0] != '#' || !by_id.count(href.substr(1))) {
-      throw InputError(origin + ": <use href=\"" + href + "\">: no element with that id");
-    }
-    if (c.use_depth >= kMaxUseDepth) throw InputError(origin + ": <use href=\"" + href + "\">: references form a cycle");
-    c.to_mm = compose(c.to_mm, Affine{Eigen::Matrix2d::Identity(), Vec2(len(n, "x"), len(n, "y"))});
-    ++c.use_depth;
-    const pugi::xml_node target = by_id.at(href.substr(1));
-    if (local_name(target) == "symbol") {
-      walk_children(target, c);
-    } else {
-      walk(target, c);
-    }
-    return;
-  }
-  if (name == "image" || name == "foreignObject") {
+  } else if (name == "switch") {
+    walk_switch(n, c);
+  } else if (name == "svg") {  // nested viewport: width and height default to 100%
+    viewport(n, c,
+             Vec2(len(n, "width", c.viewport.x(), c.viewport.x()),
+                  len(n, "height", c.viewport.y(), c.viewport.y())));
+  } else if (name == "use") {
+    use(n, c);
+  } else if (name == "image" || name == "foreignObject") {
     ++skipped[name];
-    return;
-  }
-  if (!c.style.visible) return;
-  if (name == "text") {
+  } else if (c.style.visible && name == "text") {
     text(n, parent.style.text, c);
+  } else if (std::vector<SubPath> paths; c.style.visible && geometry(n, name, c, paths)) {
+    shape(n, c, std::move(paths));
+  }
+}
+
+// A switch draws its first child whose conditions hold; Strand supports no extensions, so
+// a child with requiredExtensions (Illustrator's private data) never does.
+void Importer::walk_switch(const pugi::xml_node& n, const Context& c) {
+  for (const auto& child : n.children()) {
+    if (child.type() != pugi::node_element) continue;
+    if (!trim(child.attribute("requiredExtensions").value()).empty()) continue;
+    walk(child, c);
     return;
   }
-  std::vector<SubPath> paths;
+}
+
+// <use>: the referenced element drawn at x, y; a symbol or svg gets the use's width and
+// height as its viewport (SVG 1.1, 5.6), its viewBox scaled into it.
+void Importer::use(const pugi::xml_node& n, Context c) {
+  std::string href = n.attribute("href").value();
+  if (href.empty()) href = n.attribute("xlink:href").value();
+  const auto found = href.size() < 2 || href[0] != '#' ? by_id.end() : by_id.find(href.substr(1));
+  const std::string what = origin + ": <use href=\"" + href.substr(0, 40) + "\">";
+  if (found == by_id.end()) throw InputError(what + ": no element with that id");
+  const pugi::xml_node target = found->second;
+  if (std::find(uses.begin(), uses.end(), target) != uses.end())
+    throw InputError(what + ": references form a cycle");
+  c.to_mm =
+      compose(c.to_mm, translation(Vec2(len(n, "x", c.viewport.x()), len(n, "y", c.viewport.y()))));
+  uses.push_back(target);
+  const std::string kind = local_name(target);
+  if (kind == "symbol" || kind == "svg") {
+    const auto size = [&](const char* attr, double full) {
+      return n.attribute(attr) ? len(n, attr, full) : len(target, attr, full, full);
+    };
+    Context t;
+    if (enter(target, c, t))
+      viewport(target, t, Vec2(size("width", c.viewport.x()), size("height", c.viewport.y())));
+  } else {
+    walk(target, c);
+  }
+  uses.pop_back();
+}
+
+// A nested svg or an instantiated symbol: a new viewport of `size` (parent user units).
+void Importer::viewport(const pugi::xml_node& n, Context c, const Vec2& size) {
+  if (!(size.x() > 0) || !(size.y() > 0)) return;  // SVG: a zero-sized viewport draws nothing
+  if (local_name(n) == "svg") {
+    c.to_mm = compose(c.to_mm,
+                      translation(Vec2(len(n, "x", c.viewport.x()), len(n, "y", c.viewport.y()))));
+  }
+  c.to_mm = compose(c.to_mm, viewport_transform(n, size.x(), size.y(), origin));
+  c.viewport = view_box_size(n, origin).value_or(size);
+  walk_children(n, c);
+}
+
+// The element's outline as sub-paths in user units; false for elements that are not basic
+// shapes (defs, symbol, style, metadata, gradients, clip paths: not drawn directly).
+bool Importer::geometry(const pugi::xml_node& n, const std::string& name, const Context& c,
+                        std::vector<SubPath>& paths) {
+  const Vec2 vp = c.viewport;
+  const double diagonal = vp.norm() / std::sqrt(2.0);  // what percentages of radii refer to
+  const std::size_t room = kMaxSvgPieces - std::min(pieces, kMaxSvgPieces);
   if (name == "path") {
     std::string error;
-    paths = parse_path_data(n.attribute("d").value(), &error);
+    try {
+      paths = parse_path_data(n.attribute("d").value(), &error, room);
+    } catch (const InputError&) {
+      over("curve pieces", kMaxSvgPieces, n);
+    }
     if (!error.empty()) ++skipped["path data after an error"];
   } else if (name == "rect") {
     const bool has_rx = n.attribute("rx"), has_ry = n.attribute("ry");
-    double rx = len(n, "rx"), ry = len(n, "ry");
+    double rx = len(n, "rx", vp.x()), ry = len(n, "ry", vp.y());
     if (has_rx && !has_ry) ry = rx;
     if (has_ry && !has_rx) rx = ry;
-    const double w = len(n, "width"), h = len(n, "height");
-    if (w > 0 && h > 0) paths.push_back(rect_path(len(n, "x"), len(n, "y"), w, h, rx, ry));
+    const double w = len(n, "width", vp.x()), h = len(n, "height", vp.y());
+    if (w > 0 && h > 0)
+      paths.push_back(rect_path(len(n, "x", vp.x()), len(n, "y", vp.y()), w, h, rx, ry));
   } else if (name == "circle" || name == "ellipse") {
-    const double rx = name == "circle" ? len(n, "r") : len(n, "rx");
-    const double ry = name == "circle" ? rx : len(n, "ry");
-    if (rx > 0 && ry > 0) paths.push_back(ellipse_path(Vec2(len(n, "cx"), len(n, "cy")), rx, ry));
+    const double rx = name == "circle" ? len(n, "r", diagonal) : len(n, "rx", vp.x());
+    const double ry = name == "circle" ? rx : len(n, "ry", vp.y());
+    if (rx > 0 && ry > 0)
+      paths.push_back(ellipse_path(Vec2(len(n, "cx", vp.x()), len(n, "cy", vp.y())), rx, ry));
   } else if (name == "line") {
-    paths.push_back(polyline_path({len(n, "x1"), len(n, "y1"), len(n, "x2"), len(n, "y2")}, false));
+    paths.push_back(polyline_path(
+        {len(n, "x1", vp.x()), len(n, "y1", vp.y()), len(n, "x2", vp.x()), len(n, "y2", vp.y())},
+        false));
   } else if (name == "polyline" || name == "polygon") {
-    auto v = parse_number_list(n.attribute("points").value());
+    std::vector<double> v;
+    try {
+      v = parse_number_list(n.attribute("points").value(), 2 * room + 2);
+    } catch (const InputError& e) {
+      if (std::string(e.what()).find("more than") == std::string::npos)
+        throw InputError(origin + ": " + describe(n) + " " + e.what());
+      over("curve pieces", kMaxSvgPieces, n);
+    }
     if (v.size() % 2) v.pop_back();  // SVG: an odd coordinate is an error; draw what is whole
     paths.push_back(polyline_path(v, name == "polygon"));
   } else {
-    return;  // defs, symbol, style, metadata, gradients, clip paths: not drawn directly
+    return false;
   }
-  shape(n, c, std::move(paths));
+  return true;
 }
 
-void index_ids(const pugi::xml_node& n, std::map<std::string, pugi::xml_node>& by_id) {
-  for (const auto& child : n.children()) {
-    if (child.type() != pugi::node_element) continue;
-    if (const auto id = child.attribute("id")) by_id.emplace(id.value(), child);
-    index_ids(child, by_id);
-  }
-}
-
-}  // namespace
-
-std::string normalise_color(std::string_view text) {
-  static const std::map<std::string, std::string> kNamed = {
-      {"black", "#000000"}, {"white", "#ffffff"}, {"red", "#ff0000"}, {"green", "#008000"},
-      {"lime", "#00ff00"},  {"blue", "#0000ff"},  {"yellow", "#ffff00"}, {"cyan", "#00ffff"},
-      {"magenta", "#ff00ff"}, {"orange", "#ffa500"}, {"purple", "#800080"}, {"gray", "#808080"},
-      {"grey", "#808080"}, {"brown", "#a52a2a"}, {"navy", "#000080"}, {"pink", "#ffc0cb"}};
-  std::string s = trim(text);
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return std::tolower(ch); });
-  if (kNamed.count(s)) return kNamed.at(s);
-  const auto hex = [](const std::string& h) {
-    return std::all_of(h.begin(), h.end(), [](unsigned char ch) { return std::isxdigit(ch); });
-  };
-  if (s.size() == 4 && s[0] == '#' && hex(s.substr(1))) {
-    return std::string("#") + s[1] + s[1] + s[2] + s[2] + s[3] + s[3];
-  }
-  if (s.rfind("rgb(", 0) == 0 && s.back() == ')') {
-    const auto v = parse_number_list(s.substr(4, s.size() - 5));
-    if (v.size() == 3) {
-      char buf[8];
-      const auto ch = [](double x) { return static_cast<int>(std::clamp(x, 0.0, 255.0)); };
-      std::snprintf(buf, sizeof buf, "#%02x%02x%02x", ch(v[0]), ch(v[1]), ch(v[2]));
-      return buf;
+void Importer::shape(const pugi::xml_node& n, const Context& c, std::vector<SubPath> paths) {
+  SvgShape s;
+  s.element = local_name(n);
+  s.id = n.attribute("id").value();
+  s.stroked = c.style.stroke != "none" && !c.style.stroke.empty();
+  s.filled = c.style.fill != "none" && !c.style.fill.empty() && s.element != "line";
+  s.evenodd = c.style.evenodd;
+  s.stroke_color = s.stroked ? normalise_color(c.style.stroke) : "";
+  s.fill_color = s.filled ? normalise_color(c.style.fill) : "";
+  s.group_ids = *c.group_ids;
+  s.layer_labels = *c.layer_labels;
+  if (!s.stroked && !s.filled) return;
+  for (const auto& p : paths) pieces += p.pieces.size() + 1;
+  if (pieces > kMaxSvgPieces) over("curve pieces", kMaxSvgPieces, n);
+  for (auto& p : paths) {
+    if (p.pieces.empty()) continue;
+    SubPath t = transformed(p, c.to_mm);
+    const double m = max_abs_coordinate(t);
+    if (!(m <= kMaxCoordinateMm)) {
+      throw InputError(origin + ": " + describe(n) + ": a coordinate is " +
+                       (std::isfinite(m) ? short_number(m) + " mm" : std::string("not finite")) +
+                       " after transforms (at most " + short_number(kMaxCoordinateMm) +
+                       " mm from the origin)");
     }
+    s.paths.push_back(std::move(t));
   }
-  return s;
+  if (!s.paths.empty()) out.shapes.push_back(std::move(s));
 }
 
-SvgDrawing import_svg(std::string_view text, const std::string& origin) {
+void Importer::text(const pugi::xml_node& n, const TextStyle& parent_text, const Context& c) {
+  SvgText t;
+  t.to_mm = c.to_mm;
+  t.stroked = c.style.stroke != "none" && !c.style.stroke.empty();
+  t.filled = c.style.fill != "none" && !c.style.fill.empty();
+  t.stroke_color = t.stroked ? normalise_color(c.style.stroke) : "";
+  t.fill_color = t.filled ? normalise_color(c.style.fill) : "";
+  t.group_ids = *c.group_ids;
+  t.layer_labels = *c.layer_labels;
+  // the reader applies the element's own font properties (relative sizes must apply once)
+  t.chars = read_text_chars(n, parent_text, &properties, origin, kMaxSvgTextChars - text_chars);
+  text_chars += t.chars.size();
+  if (!t.chars.empty()) out.texts.push_back(std::move(t));
+}
+
+// Ids of every element, without recursion (pugixml's traversal is iterative), refusing a
+// document nested deeper than kMaxSvgDepth before anything recurses over it.
+struct IdIndex : pugi::xml_tree_walker {
+  std::map<std::string, pugi::xml_node>* by_id = nullptr;
+  pugi::xml_node too_deep;
+  bool for_each(pugi::xml_node& n) override {
+    if (n.type() != pugi::node_element) return true;
+    if (depth() > kMaxSvgDepth) {
+      too_deep = n;
+      return false;
+    }
+    if (const auto id = n.attribute("id")) by_id->emplace(id.value(), n);
+    return true;
+  }
+};
+
+pugi::xml_document parse(std::string_view text, const std::string& origin) {
+  const std::size_t markup = static_cast<std::size_t>(std::count(text.begin(), text.end(), '<')) +
+                             static_cast<std::size_t>(std::count(text.begin(), text.end(), '='));
+  if (markup > kMaxSvgMarkup) {
+    throw InputError(origin + ": the document has " + std::to_string(markup) +
+                     " '<' and '=' (elements and attributes; at most " +
+                     std::to_string(kMaxSvgMarkup) + ")");
+  }
   pugi::xml_document doc;
   const auto parsed = doc.load_buffer(text.data(), text.size());
   if (!parsed) {
     throw InputError(origin + ": malformed XML at byte " + std::to_string(parsed.offset) + " (" +
                      parsed.description() + ")");
   }
+  return doc;
+}
+
+}  // namespace
+
+SvgDrawing import_svg(std::string_view text, const std::string& origin) {
+  const std::optional<ExpandedEntities> expanded = expand_entities(text, origin);
+  pugi::xml_document doc = parse(expanded ? std::string_view(expanded->text) : text, origin);
   const pugi::xml_node root = doc.document_element();
-  if (local_name(root) != "svg") throw InputError(origin + ": the root element is <" + std::string(root.name()) + ">, not <svg>");
+  if (local_name(root) != "svg")
+    throw InputError(origin + ": the root element is <" + std::string(root.name()).substr(0, 40) +
+                     ">, not <svg>");
   Importer im;
   im.origin = origin;
-  index_ids(doc, im.by_id);
+  IdIndex index;
+  index.by_id = &im.by_id;
+  doc.traverse(index);
+  if (index.too_deep) {
+    throw InputError(origin + ": " + describe(index.too_deep) + ": elements nest deeper than " +
+                     std::to_string(kMaxSvgDepth) + " levels");
+  }
   // Root viewport: width/height in their units (percentages fall back to the viewBox).
-  std::vector<double> vb;
-  if (const auto a = root.attribute("viewBox")) vb = parse_number_list(a.value());
-  const auto dim = [&](const char* attr, int vb_index) {
+  const std::optional<Vec2> vb = view_box_size(root, origin);
+  const auto dim = [&](const char* attr, int axis) {
     const std::string v = root.attribute(attr).value();
-    if (!v.empty() && v.back() != '%') return im.len(root, attr);
-    if (vb.size() == 4) return vb[vb_index];
+    if (!v.empty() && v.back() != '%') return im.len(root, attr, 0.0);
+    if (vb) return (*vb)[axis];
     throw InputError(origin + ": <svg> needs " + std::string(attr) + " or a viewBox to know its size");
   };
-  const double w_px = dim("width", 2), h_px = dim("height", 3);
+  const Vec2 size_px(dim("width", 0), dim("height", 1));
   Context c;
   c.to_mm = compose(Affine{kMmPerPx * Eigen::Matrix2d::Identity(), Vec2::Zero()},
-                    viewport_transform(root, w_px, h_px, origin));
-  im.out.page_mm = Vec2(w_px, h_px) * kMmPerPx;
-  if (inherit(root, c, origin)) im.walk_children(root, c);
+                    viewport_transform(root, size_px.x(), size_px.y(), origin));
+  c.viewport = vb.value_or(size_px);
+  im.out.page_mm = size_px * kMmPerPx;
+  if (im.inherit(root, c)) im.walk_children(root, c);
+  if (expanded && expanded->external > 0) im.skipped["external entity"] += expanded->external;
   for (const auto& [name, count] : im.skipped) {
     im.out.skipped.push_back(name + " (" + std::to_string(count) + ")");
   }

@@ -2,6 +2,7 @@
 // with every transform, viewBox and unit baked in, plus what pens they may map to.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -11,8 +12,25 @@
 
 namespace strand::slicer {
 
+// Bounds on one drawing (docs/limits.md), each checked before the work it bounds; beyond
+// one, import_svg throws InputError.
+// Elements nested deeper than this, each <use> reference counting as a level.
+inline constexpr int kMaxSvgDepth = 256;
+// '<' and '=' characters in the document: an upper bound on the elements, text runs and
+// attributes pugixml would hold in memory, counted before parsing.
+inline constexpr std::size_t kMaxSvgMarkup = 4'000'000;
+// Elements visited, every <use> copy counted again (nested <use> grow exponentially).
+inline constexpr std::size_t kMaxSvgElements = 250'000;
+// Bytes of attribute values read, every <use> copy counted again.
+inline constexpr std::size_t kMaxSvgAttributeBytes = std::size_t{256} << 20;
+// Curve pieces (lines, cubics, arcs) and sub-paths of all shapes together.
+inline constexpr std::size_t kMaxSvgPieces = 2'000'000;
+// Characters of all <text> elements together.
+inline constexpr std::size_t kMaxSvgTextChars = 100'000;
+
 struct SvgShape {
   std::string element;                   // "path", "rect", "circle", ...
+  std::string id;                        // the element's own id, if any (for messages)
   std::vector<SubPath> paths;            // mm, SVG orientation (y down), document origin
   bool stroked = false;                  // stroke is set and not none
   bool filled = false;                   // fill is set (default black) and not none
@@ -28,17 +46,17 @@ struct SvgShape {
 struct SvgDrawing {
   std::vector<SvgShape> shapes;          // document order
   std::vector<SvgText> texts;            // <text> elements, document order (not yet drawn)
-  std::vector<std::string> skipped;      // "image (1)": elements not drawn
+  std::vector<std::string> skipped;      // "image (1)": what was not drawn or not applied
   Vec2 page_mm = Vec2::Zero();           // the root viewport's size
 };
 
-// Parses an SVG document. Malformed XML, a non-svg root, unknown units and references to
-// missing ids throw InputError naming `origin`; hidden elements (display:none,
-// visibility:hidden) are left out; text is kept as characters in `texts` (text_layout draws
-// it); images are listed in `skipped`.
+// Parses an SVG document. Internal DTD entities are expanded first (svg_entities.h).
+// Malformed XML, a non-svg root, unknown units, references to missing ids or in a cycle, any
+// limit above and coordinates beyond kMaxCoordinateMm after transforms throw InputError
+// naming `origin` (and the element); hidden elements (display:none, visibility:hidden) are
+// left out; of a <switch> only the first child without requiredExtensions is drawn; text is
+// kept as characters in `texts` (text_layout draws it); images, foreign objects, external
+// entities and ignored clip paths, masks and markers are counted in `skipped`.
 SvgDrawing import_svg(std::string_view text, const std::string& origin);
-
-// "#F00", "red", "rgb(255,0,0)" -> "#ff0000"; anything else lower-cased as is.
-std::string normalise_color(std::string_view text);
 
 }  // namespace strand::slicer

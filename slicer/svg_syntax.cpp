@@ -1,9 +1,13 @@
-// Recursive-descent parsers for SVG path data, transform lists, number lists and lengths.
+// Recursive-descent parsers for SVG path data, transform lists, number lists, lengths and
+// colours.
 #include "slicer/svg_syntax.h"
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
+#include <map>
 #include <optional>
 
 #include "slicer/input_error.h"
@@ -89,6 +93,14 @@ int arg_count(char upper) {
 // State of the path interpreter: current point, sub-path start, last control points.
 struct PathBuilder {
   std::vector<SubPath> out;
+  std::size_t max_pieces = 0;
+  std::size_t pieces = 0;  // pieces and sub-paths stored so far
+
+  void count() {
+    if (++pieces > max_pieces) {
+      throw InputError("path data has more than " + std::to_string(max_pieces) + " curve pieces");
+    }
+  }
   Vec2 cur = Vec2::Zero();
   Vec2 last_cubic_ctrl = Vec2::Zero();
   Vec2 last_quad_ctrl = Vec2::Zero();
@@ -97,20 +109,27 @@ struct PathBuilder {
   SubPath& current() {
     if (out.empty() || out.back().closed) {
       const Vec2 start = out.empty() ? Vec2::Zero() : out.back().start;
+      count();
       out.push_back({start, {}, false});
     }
     return out.back();
   }
   void move_to(const Vec2& p) {
     if (!out.empty() && out.back().pieces.empty()) out.pop_back();
+    count();
     out.push_back({p, {}, false});
     cur = p;
   }
   void line_to(const Vec2& p) {
     CurvePiece c;
     c.p[0] = p;
-    current().pieces.push_back(c);
+    add(c);
     cur = p;
+  }
+  void add(const CurvePiece& c) {
+    SubPath& s = current();
+    count();
+    s.pieces.push_back(c);
   }
   void cubic_to(const Vec2& c1, const Vec2& c2, const Vec2& p) {
     CurvePiece c;
@@ -118,7 +137,7 @@ struct PathBuilder {
     c.p[0] = c1;
     c.p[1] = c2;
     c.p[2] = p;
-    current().pieces.push_back(c);
+    add(c);
     last_cubic_ctrl = c2;
     cur = p;
   }
@@ -153,7 +172,7 @@ struct PathBuilder {
       case 'A': {
         const Vec2 to = pt(5);
         if ((to - cur).norm() == 0.0) break;  // SVG: an arc to the current point is omitted
-        current().pieces.push_back(arc_piece(cur, a[0], a[1], a[2], a[3] != 0, a[4] != 0, to));
+        add(arc_piece(cur, a[0], a[1], a[2], a[3] != 0, a[4] != 0, to));
         cur = to;
         break;
       }
@@ -219,9 +238,11 @@ CurvePiece arc_piece(const Vec2& from, double rx, double ry, double phi_deg, boo
   return arc;
 }
 
-std::vector<SubPath> parse_path_data(std::string_view d, std::string* error) {
+std::vector<SubPath> parse_path_data(std::string_view d, std::string* error,
+                                     std::size_t max_pieces) {
   Scanner sc(d);
   PathBuilder b;
+  b.max_pieces = max_pieces;
   char cmd = '\0';
   double a[7];
   while (!sc.done()) {
@@ -305,10 +326,14 @@ Affine parse_transform(std::string_view text) {
   return total;
 }
 
-std::vector<double> parse_number_list(std::string_view text) {
+std::vector<double> parse_number_list(std::string_view text, std::size_t max_count) {
   Scanner sc(text);
   std::vector<double> out;
   while (!sc.done()) {
+    if (out.size() >= max_count) {
+      throw InputError("points = \"" + std::string(text.substr(0, 40)) + "...\": more than " +
+                       std::to_string(max_count) + " numbers");
+    }
     const auto v = sc.number();
     if (!v) throw InputError("points = \"" + std::string(text.substr(0, 40)) + "\": not a list of numbers");
     out.push_back(*v);
@@ -332,6 +357,40 @@ double parse_length_px(std::string_view text, const std::string& what) {
   if (unit == "pc") return *v * in / 6.0;
   throw InputError(what + " = \"" + std::string(text) + "\": unknown unit '" + unit +
                    "' (use px, mm, cm, in, pt or pc)");
+}
+
+std::string normalise_color(std::string_view text) {
+  static const std::map<std::string, std::string> kNamed = {
+      {"black", "#000000"}, {"white", "#ffffff"}, {"red", "#ff0000"}, {"green", "#008000"},
+      {"lime", "#00ff00"},  {"blue", "#0000ff"},  {"yellow", "#ffff00"}, {"cyan", "#00ffff"},
+      {"magenta", "#ff00ff"}, {"orange", "#ffa500"}, {"purple", "#800080"}, {"gray", "#808080"},
+      {"grey", "#808080"}, {"brown", "#a52a2a"}, {"navy", "#000080"}, {"pink", "#ffc0cb"}};
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  std::string s(text);
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (kNamed.count(s)) return kNamed.at(s);
+  const auto hex = [](const std::string& h) {
+    return std::all_of(h.begin(), h.end(), [](unsigned char ch) { return std::isxdigit(ch); });
+  };
+  if (s.size() == 4 && s[0] == '#' && hex(s.substr(1))) {
+    return std::string("#") + s[1] + s[1] + s[2] + s[2] + s[3] + s[3];
+  }
+  if (s.rfind("rgb(", 0) == 0 && s.back() == ')') {
+    std::vector<double> v;
+    try {
+      v = parse_number_list(s.substr(4, s.size() - 5), 3);
+    } catch (const InputError&) {
+      return s;  // rgb() with percentages or too many numbers: kept as text
+    }
+    if (v.size() == 3) {
+      char buf[8];
+      const auto ch = [](double x) { return static_cast<int>(std::clamp(x, 0.0, 255.0)); };
+      std::snprintf(buf, sizeof buf, "#%02x%02x%02x", ch(v[0]), ch(v[1]), ch(v[2]));
+      return buf;
+    }
+  }
+  return s;
 }
 
 }  // namespace strand::slicer

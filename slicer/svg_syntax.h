@@ -1,8 +1,10 @@
-// The micro-grammars inside SVG attributes: path data, transform lists, number lists and
-// lengths with units. Recursive-descent parsers that follow the SVG 1.1 BNF; each throws
-// InputError naming the attribute and the offending text.
+// The micro-grammars inside SVG attributes: path data, transform lists, number lists,
+// lengths with units and colours. Recursive-descent parsers that follow the SVG 1.1 BNF;
+// each throws InputError naming the attribute and the offending text.
 #pragma once
 
+#include <cstddef>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -15,14 +17,18 @@ namespace strand::slicer {
 // command (M L H V C S Q T A Z), absolute and relative, implicit repeats, compact numbers
 // ("1.5.5", "-1-2", "1e-3") and packed arc flags ("a1 1 0 00 10 10"). Quadratics become
 // exact cubics; arcs keep their centre form. A syntax error keeps the pieces read so far
-// (SVG's error rule) and is reported through `error` when non-null.
-std::vector<SubPath> parse_path_data(std::string_view d, std::string* error = nullptr);
+// (SVG's error rule) and is reported through `error` when non-null. More than `max_pieces`
+// pieces and sub-paths together throw InputError before the next one is stored.
+std::vector<SubPath> parse_path_data(
+    std::string_view d, std::string* error = nullptr,
+    std::size_t max_pieces = std::numeric_limits<std::size_t>::max());
 
 // transform="matrix(...) translate(...) scale(...) rotate(a cx cy) skewX(...) skewY(...)".
 Affine parse_transform(std::string_view text);
 
-// "10,20 30 40" -> {10, 20, 30, 40}.
-std::vector<double> parse_number_list(std::string_view text);
+// "10,20 30 40" -> {10, 20, 30, 40}. More than `max_count` numbers throw InputError.
+std::vector<double> parse_number_list(
+    std::string_view text, std::size_t max_count = std::numeric_limits<std::size_t>::max());
 
 // A length in user units (px); mm, cm, in, pt, pc, px and none are accepted at 96 px/in.
 // Percentages and other units throw InputError naming `what`.
@@ -32,5 +38,8 @@ double parse_length_px(std::string_view text, const std::string& what);
 // are too small are scaled up as the SVG spec prescribes. Zero radii give a line.
 CurvePiece arc_piece(const Vec2& from, double rx, double ry, double x_axis_rotation_deg,
                      bool large_arc, bool sweep, const Vec2& to);
+
+// "#F00", "red", "rgb(255,0,0)" -> "#ff0000"; anything else lower-cased as is.
+std::string normalise_color(std::string_view text);
 
 }  // namespace strand::slicer

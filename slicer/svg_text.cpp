@@ -52,6 +52,7 @@ struct Element {
 struct Reader {
   PropertyReader properties;
   std::string origin;
+  std::size_t max_chars = 0;
   std::vector<RawChar> raw;
   std::vector<Element> elements;  // pre-order
 
@@ -63,12 +64,29 @@ struct Reader {
     elements.push_back({n, style, raw.size(), raw.size()});
     for (const auto& child : n.children()) {
       if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
-        for (char32_t c : utf8_to_u32(child.value())) raw.push_back({c, id});
+        append(child.value(), id);
       } else if (child.type() == pugi::node_element) {
         walk(child, style);
       }
     }
     elements[id].end = raw.size();
+  }
+
+  // UTF-8 as utf8_to_u32 reads it, refused as soon as the text passes max_chars.
+  void append(const char* text, int owner) {
+    const std::string_view bytes(text);
+    const auto* data = reinterpret_cast<const FcChar8*>(bytes.data());
+    for (std::size_t i = 0; i < bytes.size();) {
+      if (raw.size() >= max_chars) {
+        throw InputError(origin + ": the drawing's text has more than " +
+                         std::to_string(max_chars) + " characters");
+      }
+      FcChar32 c = 0;
+      const int used =
+          FcUtf8ToUcs4(data + i, &c, static_cast<int>(std::min<std::size_t>(bytes.size() - i, 8)));
+      raw.push_back({used > 0 ? static_cast<char32_t>(c) : U'\uFFFD', owner});
+      i += used > 0 ? static_cast<std::size_t>(used) : 1;
+    }
   }
 };
 
@@ -123,8 +141,9 @@ void inherit_text_style(const std::map<std::string, std::string>& props, TextSty
 }
 
 std::vector<TextChar> read_text_chars(const pugi::xml_node& text, const TextStyle& inherited,
-                                      PropertyReader properties, const std::string& origin) {
-  Reader r{properties, origin, {}, {}};
+                                      PropertyReader properties, const std::string& origin,
+                                      std::size_t max_chars) {
+  Reader r{properties, origin, max_chars, {}, {}};
   r.walk(text, inherited);
   if (r.elements.empty()) return {};
   const std::vector<std::size_t> kept = kept_characters(r.raw, r.elements[0].style.preserve_space);

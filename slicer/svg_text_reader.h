@@ -2,6 +2,7 @@
 // tree (white space, tspan nesting, x/y/dx/dy lists). Not for use outside slicer/.
 #pragma once
 
+#include <cstddef>
 #include <map>
 #include <string>
 #include <vector>
@@ -18,8 +19,10 @@ namespace strand::slicer {
 using PropertyReader = std::map<std::string, std::string> (*)(const pugi::xml_node&);
 
 // Characters of `text` (a <text> element) with their positions and styles; hidden tspans
-// (display:none) are left out. Throws InputError naming `origin` for malformed lengths.
+// (display:none) are left out. Throws InputError naming `origin` for malformed lengths and
+// for more than `max_chars` characters (checked as they are read).
 std::vector<TextChar> read_text_chars(const pugi::xml_node& text, const TextStyle& inherited,
-                                      PropertyReader properties, const std::string& origin);
+                                      PropertyReader properties, const std::string& origin,
+                                      std::size_t max_chars);
 
 }  // namespace strand::slicer

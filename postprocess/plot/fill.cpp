@@ -2,6 +2,7 @@
 // region, or the region offset inwards ring by ring.
 #include "postprocess/plot/fill.h"
 
+#include <algorithm>
 #include <clipper.hpp>
 #include <cmath>
 
@@ -21,7 +22,15 @@ constexpr double kRingArcToleranceMm = 0.005;
 // next offset; errors add up over the rings (100 rings: at most 0.1 mm), mm.
 constexpr double kRingCleanMm = 0.001;
 
+// Clipper throws on coordinates past its range (about 4.6e14 mm at this scale) and llround
+// is undefined past 9.2e14 mm: far-off points are refused first.
 ClipperLib::IntPoint to_int(const slicer::Vec2& p) {
+  if (!(std::abs(p.x()) <= slicer::kMaxCoordinateMm) ||
+      !(std::abs(p.y()) <= slicer::kMaxCoordinateMm)) {
+    throw InputError("fill: a point is " + slicer::short_number(p.cwiseAbs().maxCoeff()) +
+                     " mm from the origin (at most " +
+                     slicer::short_number(slicer::kMaxCoordinateMm) + " mm)");
+  }
   return {static_cast<ClipperLib::cInt>(std::llround(p.x() * kUnitsPerMm)),
           static_cast<ClipperLib::cInt>(std::llround(p.y() * kUnitsPerMm))};
 }
@@ -93,8 +102,20 @@ std::string to_string(FillStyle s) {
   return "hatch";
 }
 
-std::vector<slicer::Polyline> hatch_fill(const std::vector<slicer::Polyline>& outlines,
-                                         bool evenodd, double spacing_mm, double angle_deg) {
+namespace {
+
+// Clipper's exceptions (a range it cannot represent, an internal failure) become InputErrors.
+template <typename F>
+auto clipper_call(F f) {
+  try {
+    return f();
+  } catch (const ClipperLib::clipperException& e) {
+    throw InputError(std::string("fill: Clipper refused the outline (") + e.what() + ")");
+  }
+}
+
+std::vector<slicer::Polyline> hatch(const std::vector<slicer::Polyline>& outlines, bool evenodd,
+                                    double spacing_mm, double angle_deg) {
   const ClipperLib::Paths region = to_paths(outlines);
   if (region.empty() || !(spacing_mm > 0.0)) return {};
   const double a = slicer::deg_to_rad(angle_deg);
@@ -126,8 +147,8 @@ std::vector<slicer::Polyline> hatch_fill(const std::vector<slicer::Polyline>& ou
   return out;
 }
 
-std::vector<slicer::Polyline> concentric_fill(const std::vector<slicer::Polyline>& outlines,
-                                              bool evenodd, double spacing_mm) {
+std::vector<slicer::Polyline> rings(const std::vector<slicer::Polyline>& outlines, bool evenodd,
+                                    double spacing_mm) {
   ClipperLib::Paths region = to_paths(outlines);
   if (region.empty() || !(spacing_mm > 0.0)) return {};
   const auto [lo, hi] = frame_bounds(outlines, 0.0);
@@ -153,6 +174,42 @@ std::vector<slicer::Polyline> concentric_fill(const std::vector<slicer::Polyline
     region = std::move(ring);
   }
   return rings;
+}
+
+}  // namespace
+
+std::vector<slicer::Polyline> hatch_fill(const std::vector<slicer::Polyline>& outlines,
+                                         bool evenodd, double spacing_mm, double angle_deg) {
+  return clipper_call([&] { return hatch(outlines, evenodd, spacing_mm, angle_deg); });
+}
+
+std::vector<slicer::Polyline> concentric_fill(const std::vector<slicer::Polyline>& outlines,
+                                              bool evenodd, double spacing_mm) {
+  return clipper_call([&] { return rings(outlines, evenodd, spacing_mm); });
+}
+
+double fill_point_bound(const std::vector<slicer::Polyline>& outlines, FillStyle style,
+                        double spacing_mm, double angle_deg) {
+  double vertices = 0.0;
+  for (const auto& o : outlines) vertices += static_cast<double>(o.size()) + 1.0;
+  if (style == FillStyle::None || outlines.empty()) return 0.0;
+  if (style == FillStyle::Outline || !(spacing_mm > 0.0)) return vertices;
+  if (style == FillStyle::Concentric) {
+    const auto [lo, hi] = frame_bounds(outlines, 0.0);
+    const double rings = std::ceil(std::min(hi.x() - lo.x(), hi.y() - lo.y()) / 2 / spacing_mm);
+    return vertices + rings * (2.0 * vertices + 64.0);
+  }
+  const double a = slicer::deg_to_rad(angle_deg);
+  const slicer::Vec2 normal(-std::sin(a), std::cos(a));
+  double crossings = 0.0;
+  for (const auto& o : outlines) {
+    for (std::size_t i = 0; i < o.size(); ++i) {
+      const double h = std::abs((o[(i + 1) % o.size()] - o[i]).dot(normal));
+      crossings += std::floor(h / spacing_mm) + 1.0;
+    }
+  }
+  const auto [lo, hi] = frame_bounds(outlines, a);
+  return vertices + crossings + 2.0 * std::ceil((hi.y() - lo.y()) / spacing_mm);
 }
 
 std::vector<slicer::Polyline> fill_outline(const std::vector<slicer::Polyline>& outlines) {

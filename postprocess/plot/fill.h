@@ -26,7 +26,8 @@ inline constexpr double kMaxFillLines = 20000;
 
 // Hatch lines `spacing_mm` apart at `angle_deg` inside the closed polylines `outlines`
 // (even-odd or non-zero rule). Each returned polyline is one pen-down line. Throws
-// InputError when the spacing would need more than kMaxFillLines lines.
+// InputError when the spacing would need more than kMaxFillLines lines, for a coordinate
+// beyond kMaxCoordinateMm, and for anything Clipper refuses.
 std::vector<slicer::Polyline> hatch_fill(const std::vector<slicer::Polyline>& outlines,
                                          bool evenodd, double spacing_mm, double angle_deg);
 
@@ -35,6 +36,13 @@ std::vector<slicer::Polyline> hatch_fill(const std::vector<slicer::Polyline>& ou
 // or the border; holes get rings around them. Throws InputError like hatch_fill.
 std::vector<slicer::Polyline> concentric_fill(const std::vector<slicer::Polyline>& outlines,
                                               bool evenodd, double spacing_mm);
+
+// Upper bound on the points `style` adds for these outlines, without clipping: hatch
+// segments end where hatch lines cross outline edges (an edge spanning h across the lines
+// crosses at most h / spacing + 1 of them); rings have at most twice the outline's vertices
+// plus 64 round-join points each; the outline itself counts once.
+double fill_point_bound(const std::vector<slicer::Polyline>& outlines, FillStyle style,
+                        double spacing_mm, double angle_deg);
 
 // The border of the filled region as closed polylines: the outlines themselves, closed.
 std::vector<slicer::Polyline> fill_outline(const std::vector<slicer::Polyline>& outlines);

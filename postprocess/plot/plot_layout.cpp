@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "machines/plotter_kinematics.h"
 #include "postprocess/plot/fill.h"
 #include "slicer/input_error.h"
 #include "slicer/params.h"
+#include "slicer/svg_syntax.h"
 
 namespace strand::post {
 
@@ -77,14 +79,22 @@ int rule_pen(const slicer::SvgShape& s, const std::vector<Rule>& rules) {
   return 0;
 }
 
+// A count or factor for a message: three significant digits ("1.63e+302", "5.26e+07").
+std::string count_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+// Exact bounds of the drawing under m (a similarity: bounds map onto bounds).
 std::pair<Vec2, Vec2> bounds_of(const slicer::SvgDrawing& d, const Affine& m) {
   Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
   for (const auto& s : d.shapes) {
     for (const auto& p : s.paths) {
-      for (const auto& q : slicer::flatten(slicer::transformed(p, m), kBoundsToleranceMm)) {
-        lo = lo.cwiseMin(q);
-        hi = hi.cwiseMax(q);
-      }
+      const auto [plo, phi] = slicer::curve_bounds(p);
+      const Vec2 a = m.apply(plo), b = m.apply(phi);
+      lo = lo.cwiseMin(a.cwiseMin(b));
+      hi = hi.cwiseMax(a.cwiseMax(b));
     }
   }
   return {lo, hi};
@@ -102,6 +112,13 @@ Affine placement(const slicer::SvgDrawing& d, const machines::MachineProfile& m,
     if (size.x() > 0) s = std::min(s, o.fit_mm->x() / size.x());
     if (size.y() > 0) s = std::min(s, o.fit_mm->y() / size.y());
     if (!std::isfinite(s)) s = 1.0;
+    if (s > kMaxFitScale) {
+      throw InputError("plot.fit = " + slicer::short_number(o.fit_mm->x()) + "x" +
+                       slicer::short_number(o.fit_mm->y()) + ": the drawing is only " +
+                       slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) +
+                       " mm; fitting it would scale it " + count_text(s) + " times (at most " +
+                       slicer::short_number(kMaxFitScale) + ")");
+    }
   }
   const auto [alo, ahi] = machines::drawable_area(m.plotter);
   const Vec2 centre = (alo + ahi) / 2 + o.offset_mm;
@@ -123,18 +140,55 @@ slicer::Stroke stroke_of(const slicer::Polyline& pl, int tool, double width_mm) 
   return s;
 }
 
-void check_reachable(const slicer::Toolpath& t, const machines::MachineProfile& m) {
-  const auto pt = [](const Vec2& p) {
-    return "(" + slicer::short_number(std::round(p.x() * 1000) / 1000) + ", " +
-           slicer::short_number(std::round(p.y() * 1000) / 1000) + ") mm";
-  };
-  for (const auto& s : t.layers[0].strokes) {
-    std::vector<Vec2> pts{s.start_mm};
-    for (const auto& seg : s.segments) pts.push_back(seg.end_mm);
-    for (const auto& p : pts) {
+std::string point_text(const Vec2& p) {
+  return "(" + slicer::short_number(std::round(p.x() * 1000) / 1000) + ", " +
+         slicer::short_number(std::round(p.y() * 1000) / 1000) + ") mm";
+}
+
+void check_reachable(const std::vector<slicer::Polyline>& lines,
+                     const machines::MachineProfile& m) {
+  for (const auto& pl : lines) {
+    for (const auto& p : pl) {
       if (const auto why = machines::unreachable_reason(m.plotter, p)) {
-        throw InputError("plot: the drawing does not fit " + m.name + ": point " + pt(p) + ": " + *why +
-                         " (use --fit, --scale or --offset)");
+        throw InputError("plot: the drawing does not fit " + m.name + ": point " + point_text(p) +
+                         ": " + *why + " (use --fit, --scale or --offset)");
+      }
+    }
+  }
+}
+
+// Flattening is bounded before it starts: the placement is a similarity of scale s, so a
+// curve flattened to tol on paper is the original flattened to tol / s.
+void check_outline_budget(const slicer::SvgDrawing& d, double scale, const PlotOptions& o) {
+  double points = 0.0;
+  for (const auto& shape : d.shapes) {
+    for (const auto& p : shape.paths)
+      points += slicer::flatten_point_bound(p, o.tolerance_mm * kFlattenShare / scale);
+  }
+  if (points > kMaxPlotPoints) {
+    throw InputError("plot.tolerance = " + slicer::short_number(o.tolerance_mm) +
+                     ": the curves would flatten into up to " + count_text(points) +
+                     " points (at most " + slicer::short_number(kMaxPlotPoints) +
+                     "); use a larger tolerance, a smaller scale or a simpler drawing");
+  }
+}
+
+std::string describe(const slicer::SvgShape& s, std::size_t index) {
+  return "<" + s.element + (s.id.empty() ? "" : " id=\"" + s.id.substr(0, 40) + "\"") +
+         "> (shape " + std::to_string(index + 1) + ")";
+}
+
+// Shapes from any source (SVG, text layout, tracing) are within kMaxCoordinateMm before
+// their bounds and point counts are computed from them.
+void check_coordinates(const slicer::SvgDrawing& d) {
+  for (std::size_t i = 0; i < d.shapes.size(); ++i) {
+    for (const auto& p : d.shapes[i].paths) {
+      const double m = slicer::max_abs_coordinate(p);
+      if (!(m <= slicer::kMaxCoordinateMm)) {
+        throw InputError(
+            "plot: " + describe(d.shapes[i], i) + ": a coordinate is " +
+            (std::isfinite(m) ? slicer::short_number(m) + " mm" : std::string("not finite")) +
+            " from the origin (at most " + slicer::short_number(slicer::kMaxCoordinateMm) + " mm)");
       }
     }
   }
@@ -156,6 +210,43 @@ std::vector<slicer::Polyline> fill_lines(const std::vector<slicer::Polyline>& ou
     for (auto& pl : fill_outline(outlines)) lines.push_back(std::move(pl));
   }
   return lines;
+}
+
+// The fills are bounded before any is computed: outline points plus every filled shape's
+// fill_point_bound stay within kMaxPlotPoints.
+void check_fill_budget(const slicer::SvgDrawing& d,
+                       const std::vector<std::vector<slicer::Polyline>>& outlines,
+                       const std::vector<int>& pens, double width_mm, const PlotOptions& o,
+                       double points) {
+  for (std::size_t i = 0; i < d.shapes.size(); ++i) {
+    if (!d.shapes[i].filled) continue;
+    points += fill_point_bound(outlines[i], o.fill, per_pen(o.hatch_spacing_mm, pens[i], width_mm),
+                               per_pen(o.hatch_angle_deg, pens[i], 45.0));
+  }
+  if (points > kMaxPlotPoints) {
+    throw InputError("plot.hatch-spacing: the outlines and fills would draw up to " +
+                     count_text(points) + " points (at most " +
+                     slicer::short_number(kMaxPlotPoints) +
+                     "); use a larger --hatch-spacing, --fill outline or a smaller drawing");
+  }
+}
+
+// Every shape's outlines on paper, each checked for reach before any fill is computed;
+// `points` counts them.
+std::vector<std::vector<slicer::Polyline>> placed_outlines(const slicer::SvgDrawing& d,
+                                                           const Affine& to_paper,
+                                                           const machines::MachineProfile& m,
+                                                           const PlotOptions& o, double& points) {
+  std::vector<std::vector<slicer::Polyline>> outlines(d.shapes.size());
+  for (std::size_t i = 0; i < d.shapes.size(); ++i) {
+    for (const auto& p : d.shapes[i].paths) {
+      outlines[i].push_back(
+          slicer::flatten(slicer::transformed(p, to_paper), o.tolerance_mm * kFlattenShare));
+      points += static_cast<double>(outlines[i].back().size());
+    }
+    check_reachable(outlines[i], m);
+  }
+  return outlines;
 }
 
 }  // namespace
@@ -184,29 +275,38 @@ slicer::Toolpath layout_plot(const slicer::SvgDrawing& d, const machines::Machin
                              const PlotOptions& o) {
   if (!m.plotter.enabled) throw InputError("machine = " + m.name + ": not a plotter (no \"plotter\" block in its profile)");
   if (d.shapes.empty()) throw InputError("plot: the SVG has nothing drawable (no visible stroked or filled shapes)");
+  check_coordinates(d);
   const std::vector<int> pens = assign_pens(d, o.pens, m.plotter.pen.count);
   const Affine to_paper = placement(d, m, o);
-  const double tol = o.tolerance_mm * kFlattenShare;
+  check_outline_budget(d, std::abs(to_paper.linear(0, 0)), o);
   const double width = m.plotter.pen.width_mm;
+  double points = 0.0;
+  const auto outlines = placed_outlines(d, to_paper, m, o, points);
+  check_fill_budget(d, outlines, pens, width, o, points);
   slicer::Toolpath t;
   t.generator = "plot";
   t.layers.push_back({0.0, 0.0, {}});
   auto& strokes = t.layers[0].strokes;
   for (std::size_t i = 0; i < d.shapes.size(); ++i) {
     const auto& shape = d.shapes[i];
-    std::vector<slicer::Polyline> outlines;
-    for (const auto& p : shape.paths) outlines.push_back(slicer::flatten(slicer::transformed(p, to_paper), tol));
     const int tool = pens[i] - 1;
     if (shape.filled) {
-      for (const auto& pl : fill_lines(outlines, shape, pens[i], width, o)) strokes.push_back(stroke_of(pl, tool, width));
+      std::vector<slicer::Polyline> lines;
+      try {
+        lines = fill_lines(outlines[i], shape, pens[i], width, o);
+      } catch (const InputError& e) {
+        throw InputError("plot: " + describe(shape, i) + ": " + e.what());
+      }
+      check_reachable(lines, m);
+      for (const auto& pl : lines) strokes.push_back(stroke_of(pl, tool, width));
     }
     if (shape.stroked) {
-      for (const auto& pl : outlines) strokes.push_back(stroke_of(pl, tool, width));
+      for (const auto& pl : outlines[i]) strokes.push_back(stroke_of(pl, tool, width));
     }
   }
   std::erase_if(strokes, [](const slicer::Stroke& s) { return s.segments.empty(); });
-  if (strokes.empty()) throw InputError("plot: the SVG has nothing drawable (every shape is empty after placement)");
-  check_reachable(t, m);
+  if (strokes.empty())
+    throw InputError("plot: the SVG has nothing drawable (every shape is empty after placement)");
   const auto [lo, hi] = slicer::bounds(t);
   t.derived["drawing_width_mm"] = hi.x() - lo.x();
   t.derived["drawing_height_mm"] = hi.y() - lo.y();

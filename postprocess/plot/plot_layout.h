@@ -33,6 +33,13 @@ struct PlotOptions {
 // `fallback` when the list is empty.
 double per_pen(const std::vector<double>& values, int pen, double fallback);
 
+// Points of the laid-out drawing (flattened outlines, plus fill lines) are bounded before
+// flattening and again before filling: more would take minutes and gigabytes to plan and
+// write (4 million points is about 100 MB of G-code).
+inline constexpr double kMaxPlotPoints = 4e6;
+// --fit never scales a drawing up more than this (a drawing a millionth of the box).
+inline constexpr double kMaxFitScale = 1e6;
+
 // Share of the tolerance spent on curve flattening; the rest goes to the kinematic bow of
 // straight segments and to number rounding.
 inline constexpr double kFlattenShare = 0.5;
@@ -44,7 +51,9 @@ std::vector<int> assign_pens(const slicer::SvgDrawing& d, const std::string& rul
                              int machine_pens);
 
 // The placed, flattened drawing as one layer of reversible Feature::Pen strokes (tool =
-// 0-based pen). Throws InputError if nothing is drawable or a point cannot be reached.
+// 0-based pen). Throws InputError if nothing is drawable, a point cannot be reached (checked
+// on the outlines before any fill), the points would pass kMaxPlotPoints (checked before
+// flattening and before filling) or a fill fails (naming the shape).
 slicer::Toolpath layout_plot(const slicer::SvgDrawing& d, const machines::MachineProfile& m,
                              const PlotOptions& o);
 

@@ -15,9 +15,10 @@ seeds() {  # target -> seed files
     where_fuzz) ;;
     curved_fuzz) ls "$src"/tests/fuzz/seeds/curved_fuzz/* ;;
     mesh_fuzz) ls "$src"/tests/fuzz/seeds/mesh_fuzz/* ;;
+    image_fuzz) ls "$src"/samples/plot/*.png ;;
   esac
 }
-for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz; do
+for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz image_fuzz; do
   exe="$build/tests/fuzz/$target"
   regressions="$src/tests/fuzz/regressions/$target"
   corpus="$build/fuzz-corpus/$target"
@@ -28,7 +29,9 @@ for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz; do
       { cat "$build/$target.regressions.log"; echo "$target: a regression input fails"; exit 1; }
   fi
   log="$build/$target.log"
-  if ! "$exe" "$corpus" "$regressions" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  dict=()
+  if [[ -f "$src/tests/fuzz/$target.dict" ]]; then dict=(-dict="$src/tests/fuzz/$target.dict"); fi
+  if ! "$exe" "$corpus" "$regressions" "${dict[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
        -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/$target-" >"$log" 2>&1; then
     tail -n 60 "$log"
     echo "$target: FAILED (artifact in $build/$target-*)"

@@ -60,6 +60,50 @@ TEST_P(ChordBound, DenseSamplesOfSkewedArcStayWithinTolerance) {
 
 INSTANTIATE_TEST_SUITE_P(Tolerances, ChordBound, ::testing::Values(0.5, 0.05, 0.005));
 
+TEST_P(ChordBound, PointBoundHoldsWithoutFlattening) {
+  const double tol = GetParam();
+  for (const SubPath& s : {wavy_cubic(), skewed_arc()}) {
+    const double bound = flatten_point_bound(s, tol);
+    const double points = static_cast<double>(flatten(s, tol).size());
+    EXPECT_GE(bound, points);
+    EXPECT_LE(bound, 8 * points + 8) << "a bound so loose it would refuse real drawings";
+  }
+}
+
+TEST(Curves, AbsurdControlPointsNeitherHangNorExplode) {
+  // 1e308 once took 2.1 GB in 7 s; the split depth is now bounded by the proof, capped
+  SubPath s = wavy_cubic();
+  s.pieces[0].p[0] = Vec2(1e308, 0);
+  EXPECT_EQ(max_abs_coordinate(s), 1e308);
+  EXPECT_LE(flatten_point_bound(s, 0.001), std::ldexp(1.0, 40) + 1);
+  s.pieces[0].p[1] = Vec2(NAN, 0);
+  EXPECT_EQ(max_abs_coordinate(s), INFINITY);
+  EXPECT_LE(flatten(s, 0.001).size(), 2u);  // a NaN control point splits nothing
+}
+
+TEST(Curves, BoundsAreExactForCubicsAndArcs) {
+  const SubPath c = wavy_cubic();
+  const auto [lo, hi] = curve_bounds(c);
+  Vec2 slo(INFINITY, INFINITY), shi(-INFINITY, -INFINITY);
+  for (int i = 0; i <= 100000; ++i) {
+    const Vec2 p = cubic_point(c.start, c.pieces[0], i / 100000.0);
+    slo = slo.cwiseMin(p);
+    shi = shi.cwiseMax(p);
+  }
+  EXPECT_LT((slo - lo).norm(), 1e-6);
+  EXPECT_LT((shi - hi).norm(), 1e-6);
+  const SubPath a = skewed_arc();
+  const auto [alo, ahi] = curve_bounds(a);
+  slo = Vec2(INFINITY, INFINITY), shi = -slo;
+  for (int i = 0; i <= 100000; ++i) {
+    const Vec2 p = arc_point(a.pieces[0], 0.3 - 4.0 * i / 100000.0);
+    slo = slo.cwiseMin(p);
+    shi = shi.cwiseMax(p);
+  }
+  EXPECT_LT((slo - alo).norm(), 1e-6);
+  EXPECT_LT((shi - ahi).norm(), 1e-6);
+}
+
 TEST(Curves, AffineTransformOfArcMatchesTransformedPoints) {
   const SubPath s = skewed_arc();
   Affine m;

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 
 #include "slicer/input_error.h"
 #include "slicer/svg_syntax.h"
@@ -104,6 +106,108 @@ TEST(SvgImport, GroupIdsAreCollectedFromEveryAncestor) {
   ASSERT_EQ(d.shapes.size(), 1u);
   EXPECT_EQ(d.shapes[0].group_ids, (std::vector<std::string>{"inner", "m3"}));
   EXPECT_EQ(d.shapes[0].stroke_color, "#ff0000");
+}
+
+std::string sample(const std::string& name) {
+  std::ifstream in(std::string(STRAND_SOURCE_DIR) + "/samples/plot/" + name);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// The exact axis-aligned box of a shape's first sub-path.
+std::pair<Vec2, Vec2> box(const SvgShape& s) { return curve_bounds(s.paths.at(0)); }
+
+void expect_box(const SvgShape& s, const Vec2& lo, const Vec2& hi) {
+  const auto [a, b] = box(s);
+  EXPECT_LT((a - lo).norm(), 1e-6) << a.transpose();
+  EXPECT_LT((b - hi).norm(), 1e-6) << b.transpose();
+}
+
+TEST(SvgImport, UseSizesSymbolsByTheirViewBoxAndPreserveAspectRatio) {
+  const auto d = import_svg(sample("symbols.svg"), "symbols.svg");
+  // each tile use: the rect, then the cross (two sub-paths); the wide symbol: its rect
+  ASSERT_EQ(d.shapes.size(), 7u);
+  expect_box(d.shapes[0], Vec2(5, 5), Vec2(25, 25));    // 10 -> 20: scale 2
+  expect_box(d.shapes[2], Vec2(30, 5), Vec2(70, 45));   // 10 -> 40: scale 4
+  expect_box(d.shapes[4], Vec2(80, 5), Vec2(110, 20));  // 20x10 meet in 30x30, xMinYMin
+  expect_box(d.shapes[5], Vec2(15, 35), Vec2(35, 55));  // 10 meet in 40x20, centred in x
+  EXPECT_EQ(d.shapes[3].paths.size(), 2u);
+  EXPECT_TRUE(d.skipped.empty());
+}
+
+TEST(SvgImport, IllustratorEntitiesDrawTheWholeDrawing) {
+  const auto d = import_svg(sample("illustrator_entities.svg"), "illustrator_entities.svg");
+  // frame, face, two filled eyes, smile: the switch's foreignObject is not drawn
+  ASSERT_EQ(d.shapes.size(), 5u);
+  EXPECT_EQ(d.shapes[0].element, "rect");
+  EXPECT_EQ(d.shapes[1].element, "circle");
+  EXPECT_EQ(d.shapes[2].fill_color, "#e30613");
+  EXPECT_FALSE(d.shapes[2].stroked);
+  EXPECT_TRUE(d.shapes[1].stroked);
+  EXPECT_FALSE(d.shapes[1].filled);  // the style came from &st0;
+  EXPECT_EQ(d.shapes[4].group_ids, (std::vector<std::string>{"Smile", "Layer_1"}));
+  // 200 px at 96 px/in; eye centres at (70, 75) and (130, 75) px
+  const double mm = 25.4 / 96;
+  const auto [lo, hi] = box(d.shapes[3]);
+  EXPECT_LT(((lo + hi) / 2 - Vec2(130, 75) * mm).norm(), 1e-6);
+  EXPECT_NEAR(d.page_mm.x(), 200 * mm, 1e-9);
+  EXPECT_TRUE(d.skipped.empty());
+}
+
+TEST(SvgImport, SwitchDrawsItsFirstChildWithoutExtensions) {
+  const auto d = import_svg(
+      doc("<switch><g requiredExtensions=\"http://ns.adobe.com/AdobeIllustrator/10.0/\">"
+          "<rect width=\"9\" height=\"9\"/></g><line x2=\"5\"/><circle r=\"3\"/></switch>"),
+      "t");
+  ASSERT_EQ(d.shapes.size(), 1u);
+  EXPECT_EQ(d.shapes[0].element, "line");
+}
+
+TEST(SvgImport, IgnoredEffectsAndExternalEntitiesAreCountedAsSkipped) {
+  const std::string text =
+      "<!DOCTYPE svg [<!ENTITY logo SYSTEM \"logo.xml\"><!ENTITY a \"5\">]>" +
+      doc("<line x2=\"&a;\" clip-path=\"url(#c)\"/><line x2=\"5\" mask=\"url(#m)\" "
+          "marker-end=\"url(#e)\"/>"
+          "<g style=\"clip-path: url(#c)\">&logo;<image href=\"x.png\"/><foreignObject/></g>");
+  const auto d = import_svg(text, "t");
+  EXPECT_EQ(d.skipped,
+            (std::vector<std::string>{"clip-path (2)", "external entity (1)", "foreignObject (1)",
+                                      "image (1)", "marker (1)", "mask (1)"}));
+  ASSERT_EQ(d.shapes.size(), 2u);
+  EXPECT_NEAR(flatten(d.shapes[0].paths[0], 0.01)[1].x(), 5.0, 1e-9);
+}
+
+TEST(SvgImport, LimitsAreInputErrorsNamingTheElement) {
+  const auto message = [](const std::string& text) {
+    try {
+      import_svg(text, "t.svg");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  std::string open, close;
+  for (int i = 0; i < kMaxSvgDepth; ++i) open += "<g>", close += "</g>";
+  EXPECT_EQ(message(doc(open + "<line x2=\"1\"/>" + close)),
+            "t.svg: <line>: elements nest deeper than 256 levels");
+  EXPECT_EQ(message(doc("<line id=\"a\" x2=\"1e8\"/>")),
+            "t.svg: <line id=\"a\">: a coordinate is 1e+08 mm after transforms (at most 1e+07 mm "
+            "from the origin)");
+  EXPECT_EQ(message(doc("<g id=\"a\"><use href=\"#a\"/></g>")),
+            "t.svg: <use href=\"#a\">: references form a cycle");
+  // a cycle through a symbol, and a use nesting past the depth through a chain of uses
+  EXPECT_EQ(message(doc("<symbol id=\"s\"><use href=\"#s\"/></symbol><use href=\"#s\"/>")),
+            "t.svg: <use href=\"#s\">: references form a cycle");
+  std::string chain = "<defs><line id=\"u0\" x2=\"1\"/>";
+  for (int i = 1; i < 200; ++i) {
+    chain +=
+        "<g id=\"u" + std::to_string(i) + "\"><use href=\"#u" + std::to_string(i - 1) + "\"/></g>";
+  }
+  const std::string chained = message(doc(chain + "</defs><use href=\"#u199\"/>"));
+  EXPECT_NE(chained.find("nest deeper than 256 levels (each <use> counts as one)"),
+            std::string::npos)
+      << chained;
 }
 
 TEST(SvgImport, BadInputThrowsInputError) {

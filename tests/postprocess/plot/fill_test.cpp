@@ -105,6 +105,32 @@ TEST(Fill, TooFineASpacingIsRefusedBeforeAnyWork) {
   EXPECT_THROW(concentric_fill({square(0, 0, 300)}, false, 1e-4), InputError);
 }
 
+TEST(Fill, FarCoordinatesAreInputErrorsNotClipperExceptions) {
+  // Clipper 6 throws past about 4.6e14 mm at this scale: the range is checked first
+  for (const double far : {1e15, 1e308, static_cast<double>(INFINITY)}) {
+    EXPECT_THROW(hatch_fill({square(0, 0, 10), square(far, 0, 10)}, false, 1.0, 45.0), InputError)
+        << far;
+    EXPECT_THROW(concentric_fill({square(far, 0, 10)}, false, 1.0), InputError) << far;
+  }
+}
+
+TEST(Fill, PointBoundCoversWhatTheFillsDraw) {
+  const std::vector<Polyline> region = {square(0, 0, 50), circle(Vec2(25, 25), 10, 90)};
+  for (const double angle : {0.0, 30.0, 45.0, 90.0}) {
+    double points = 0;
+    for (const auto& pl : hatch_fill(region, true, 0.7, angle))
+      points += static_cast<double>(pl.size());
+    const double bound = fill_point_bound(region, FillStyle::Hatch, 0.7, angle);
+    EXPECT_GE(bound, points) << angle;
+    EXPECT_LE(bound, 4 * points + 1000) << angle;
+  }
+  double ring_points = 0;
+  for (const auto& pl : concentric_fill(region, true, 0.7))
+    ring_points += static_cast<double>(pl.size());
+  EXPECT_GE(fill_point_bound(region, FillStyle::Concentric, 0.7, 0.0), ring_points);
+  EXPECT_EQ(fill_point_bound(region, FillStyle::None, 0.7, 0.0), 0.0);
+}
+
 // A filled, unstroked 40 mm square through the layout on an XY plotter.
 slicer::SvgDrawing filled_square() {
   return slicer::import_svg(
