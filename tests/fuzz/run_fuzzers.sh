@@ -4,6 +4,10 @@
 # regressions. Prints executions per target; exits non-zero on the first crash, hang or leak.
 # Usage: tests/fuzz/run_fuzzers.sh BUILD_DIR SECONDS
 set -euo pipefail
+# An input counts as a hang past HANG_SECONDS: ASan + UBSan run 3-10x slower than the release
+# build, so 30 s here is the release build's few seconds (e.g. the <use>-doubling regression:
+# 0.5 s release, 5-7 s here on a loaded 2-core machine).
+HANG_SECONDS=30
 build="$1"
 seconds="$2"
 src="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -25,13 +29,13 @@ for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz ima
   mkdir -p "$corpus"
   for f in $(seeds "$target"); do cp -f "$f" "$corpus/"; done
   if compgen -G "$regressions/*" >/dev/null; then
-    "$exe" -rss_limit_mb=2048 -timeout=10 "$regressions"/* >/dev/null 2>"$build/$target.regressions.log" ||
+    "$exe" -rss_limit_mb=2048 -timeout=$HANG_SECONDS "$regressions"/* >/dev/null 2>"$build/$target.regressions.log" ||
       { cat "$build/$target.regressions.log"; echo "$target: a regression input fails"; exit 1; }
   fi
   log="$build/$target.log"
   dict=()
   if [[ -f "$src/tests/fuzz/$target.dict" ]]; then dict=(-dict="$src/tests/fuzz/$target.dict"); fi
-  if ! "$exe" "$corpus" "$regressions" "${dict[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  if ! "$exe" "$corpus" "$regressions" "${dict[@]}" -max_total_time="$seconds" -timeout=$HANG_SECONDS -rss_limit_mb=2048 \
        -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/$target-" >"$log" 2>&1; then
     tail -n 60 "$log"
     echo "$target: FAILED (artifact in $build/$target-*)"
