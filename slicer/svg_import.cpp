@@ -103,7 +103,7 @@ struct Importer {
   SvgDrawing out;
   std::map<std::string, int> skipped;
   std::vector<pugi::xml_node> uses;  // <use> targets being drawn, outermost first
-  std::size_t elements = 0, attribute_bytes = 0, pieces = 0, text_chars = 0;
+  std::size_t elements = 0, use_copies = 0, attribute_bytes = 0, pieces = 0, text_chars = 0;
 
   [[noreturn]] void over(const std::string& what, std::size_t limit,
                          const pugi::xml_node& n) const {
@@ -149,6 +149,8 @@ bool Importer::enter(const pugi::xml_node& n, const Context& parent, Context& c)
                      std::to_string(kMaxSvgDepth) + " levels (each <use> counts as one)");
   }
   if (++elements > kMaxSvgElements) over("elements (each <use> copy counted)", kMaxSvgElements, n);
+  if (!uses.empty() && ++use_copies > kMaxSvgUseCopies)
+    over("elements copied by <use>", kMaxSvgUseCopies, n);
   for (const auto& a : n.attributes()) attribute_bytes += std::strlen(a.value());
   if (attribute_bytes > kMaxSvgAttributeBytes)
     over("bytes of attributes (each <use> copy counted)", kMaxSvgAttributeBytes, n);

@@ -19,8 +19,12 @@ inline constexpr int kMaxSvgDepth = 256;
 // '<' and '=' characters in the document: an upper bound on the elements, text runs and
 // attributes pugixml would hold in memory, counted before parsing.
 inline constexpr std::size_t kMaxSvgMarkup = 4'000'000;
-// Elements visited, every <use> copy counted again (nested <use> grow exponentially).
-inline constexpr std::size_t kMaxSvgElements = 250'000;
+// Elements visited, every <use> copy counted again; a drawing without <use> has at most
+// kMaxSvgMarkup of them anyway (a 300,000-line plot is a normal benchmark drawing).
+inline constexpr std::size_t kMaxSvgElements = 4'000'000;
+// Elements instantiated by <use> references (nested <use> grow exponentially: 39 levels each
+// using the previous twice would be 5e11 copies).
+inline constexpr std::size_t kMaxSvgUseCopies = 250'000;
 // Bytes of attribute values read, every <use> copy counted again.
 inline constexpr std::size_t kMaxSvgAttributeBytes = std::size_t{256} << 20;
 // Curve pieces (lines, cubics, arcs) and sub-paths of all shapes together.

@@ -78,7 +78,7 @@ std::vector<Case> cases() {
        "<g>: elements nest deeper than 256 levels"},
       {"nested_transforms", nested("<g transform='translate(0.001 0)'>", "</g>", 10000), "",
        "nest deeper than 256"},
-      {"use_doubling", use_doubling(), "", "more than 250000 elements (each <use> copy counted)"},
+      {"use_doubling", use_doubling(), "", "more than 250000 elements copied by <use>"},
       {"bezier_1e308", svg("<path d='M0 0 C1e308 0 0 10 10 10' stroke='black' fill='none'/>"), "",
        "<path>: a coordinate is 1e+308 mm after transforms (at most 1e+07 mm"},
       {"not_finite",

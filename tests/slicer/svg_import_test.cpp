@@ -210,6 +210,28 @@ TEST(SvgImport, LimitsAreInputErrorsNamingTheElement) {
       << chained;
 }
 
+// The <use> budget counts copies only: a drawing of more plain elements than that (the
+// 300,000-line plot benchmark) imports whole, while as many copies made by <use> are refused.
+TEST(SvgImport, UseBudgetCountsCopiesNotPlainElements) {
+  const std::size_t n = kMaxSvgUseCopies + 10;
+  std::string lines;
+  lines.reserve(n * 24);
+  for (std::size_t i = 0; i < n; ++i) lines += "<line x2=\"" + std::to_string(i % 97 + 1) + "\"/>";
+  EXPECT_EQ(import_svg(doc(lines), "t.svg").shapes.size(), n);
+  std::string copies = "<defs><g id=\"row\">";
+  for (int i = 0; i < 1000; ++i) copies += "<line x2=\"1\"/>";
+  copies += "</g></defs>";
+  for (std::size_t i = 0; i < kMaxSvgUseCopies / 1000 + 1; ++i) copies += "<use href=\"#row\"/>";
+  try {
+    import_svg(doc(copies), "t.svg");
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 250000 elements copied by <use>"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(SvgImport, BadInputThrowsInputError) {
   EXPECT_THROW(import_svg("<svg><g></svg>", "t"), InputError);
   EXPECT_THROW(import_svg(doc("<line x2=\"5furlong\"/>"), "t"), InputError);
