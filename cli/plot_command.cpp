@@ -2,6 +2,7 @@
 // report; `--erase` also writes the wall robot's erase sweeps.
 #include <iostream>
 #include <memory>
+#include <utility>
 
 #include "cli/commands.h"
 #include "cli/param_flags.h"
@@ -103,7 +104,7 @@ int run_plot(const PlotArgs& a) {
     r.drawing = slicer::import_svg(slicer::read_file(a.svg), a.svg);
     draw_text_into(r, text_options(r.parameters));
   }
-  PlotResult p = plot_drawing(r, m);
+  PlotResult p = plot_drawing(std::move(r), m);
   p.report["gcode"] = a.output;
   std::string erase;
   if (!a.erase.empty()) {

@@ -8,6 +8,7 @@
 #include "machines/plotter_kinematics.h"
 #include "postprocess/plot/pen_planner.h"
 #include "postprocess/plot/stroke_ordering.h"
+#include "slicer/memory.h"
 #include "slicer/params.h"
 
 namespace strand::cli {
@@ -86,10 +87,12 @@ void draw_text_into(PlotRequest& r, const slicer::TextOptions& o) {
   r.notes.emplace_back("text", t.summary());
 }
 
-PlotResult plot_drawing(const PlotRequest& r, const machines::MachineProfile& m) {
+PlotResult plot_drawing(PlotRequest r, const machines::MachineProfile& m) {
   const post::PlotOptions& o = r.options;
   PlotResult out;
   out.toolpath = post::layout_plot(r.drawing, m, o);
+  std::vector<slicer::SvgShape>().swap(r.drawing.shapes);  // laid out: only `skipped` is read on
+  slicer::release_free_memory();
   const auto& setup = m.plotter.setup;
   const post::MetricMap metric = [&setup](const slicer::Vec2& p) { return machines::to_axes(setup, p); };
   auto& strokes = out.toolpath.layers[0].strokes;

@@ -3,6 +3,7 @@
 // SVG (to place in a drawing) or plotted straight to pen G-code.
 #include <iostream>
 #include <memory>
+#include <utility>
 
 #include "cli/commands.h"
 #include "cli/param_flags.h"
@@ -101,7 +102,7 @@ int run_text(const TextArgs& a) {
     r.options.fill = post::fill_style_from_string(v.at("fill").get<std::string>());
     r.options.offset_mm = slicer::Vec2(v["offset"][0].get<double>(), v["offset"][1].get<double>());
     const machines::MachineProfile m = machines::load_profile(a.machine);
-    PlotResult p = plot_drawing(r, m);
+    PlotResult p = plot_drawing(std::move(r), m);
     out = p.gcode;
     summary = p.summary;
     p.report["gcode"] = a.output;

@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <pugixml.hpp>
+#include <utility>
 
 #include "slicer/input_error.h"
 #include "slicer/params.h"
@@ -421,7 +422,9 @@ SvgDrawing import_svg(std::string_view text, const std::string& origin) {
   for (const auto& [name, count] : im.skipped) {
     im.out.skipped.push_back(name + " (" + std::to_string(count) + ")");
   }
-  return im.out;
+  im.by_id.clear();
+  doc.reset();  // the parsed document goes before the caller lays the drawing out
+  return std::move(im.out);
 }
 
 }  // namespace strand::slicer
