@@ -62,12 +62,12 @@ sanitize-build: deps
 sanitize: sanitize-build
 	@cd $(SAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp \
+	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \
 	  ctest --output-on-failure -j$$(nproc)
 
 # Each fuzz target for FUZZ_SECONDS (default 600); fuzz-ci is the short run in .ci/run.
 fuzz: sanitize-build
-	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp tests/fuzz/run_fuzzers.sh $(SAN_DIR) $(FUZZ_SECONDS)
+	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 tests/fuzz/run_fuzzers.sh $(SAN_DIR) $(FUZZ_SECONDS)
 
 fuzz-ci:
 	@$(MAKE) fuzz FUZZ_SECONDS=60

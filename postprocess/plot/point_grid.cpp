@@ -47,11 +47,13 @@ PointGrid::PointGrid(const std::vector<slicer::Vec2>& points, const std::vector<
   for (int id : ids) ids_[fill[cell_of(points[id])]++] = id;
 }
 
+// Clamped before the cast: a query far outside the grid (a travel start of the machine's
+// metric, say) would not fit an int.
 int PointGrid::cell_x(double x) const {
-  return std::clamp(static_cast<int>(std::floor((x - lo_.x()) / cell_)), 0, nx_ - 1);
+  return static_cast<int>(std::clamp(std::floor((x - lo_.x()) / cell_), 0.0, nx_ - 1.0));
 }
 int PointGrid::cell_y(double y) const {
-  return std::clamp(static_cast<int>(std::floor((y - lo_.y()) / cell_)), 0, ny_ - 1);
+  return static_cast<int>(std::clamp(std::floor((y - lo_.y()) / cell_), 0.0, ny_ - 1.0));
 }
 
 void PointGrid::forget(int id) {

@@ -20,12 +20,18 @@ namespace {
 constexpr int kStrandsPerRegion = 3;
 
 slicer::Mesh random_shape(std::mt19937& rng, int kind) {
+  // Draws in named steps: the order of arguments is unspecified (GCC and clang differ), so
+  // draws inside one call would give each compiler other shapes.
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  if (kind == 0)
-    return testing::box_mesh(slicer::Vec3(6 + 30 * u(rng), 6 + 30 * u(rng), 2 + 4 * u(rng)));
+  if (kind == 0) {
+    const double z = 2 + 4 * u(rng), y = 6 + 30 * u(rng), x = 6 + 30 * u(rng);
+    return testing::box_mesh(slicer::Vec3(x, y, z));
+  }
   if (kind == 1) {
     const double r = 5 + 12 * u(rng);
-    return testing::tube_mesh(r, u(rng) < 0.5 ? 0.0 : (0.2 + 0.4 * u(rng)) * r, 2 + 4 * u(rng), 64);
+    const double height = 2 + 4 * u(rng);
+    const double hole = u(rng) < 0.5 ? 0.0 : (0.2 + 0.4 * u(rng)) * r;
+    return testing::tube_mesh(r, hole, height, 64);
   }
   const double tube = 2.5 + 3 * u(rng);
   return testing::torus_mesh(tube + 3 + 12 * u(rng), tube, 64, 24);
