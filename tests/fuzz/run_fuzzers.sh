@@ -35,7 +35,9 @@ for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz ima
   log="$build/$target.log"
   dict=()
   if [[ -f "$src/tests/fuzz/$target.dict" ]]; then dict=(-dict="$src/tests/fuzz/$target.dict"); fi
-  if ! "$exe" "$corpus" "$regressions" "${dict[@]}" -max_total_time="$seconds" -timeout=$HANG_SECONDS -rss_limit_mb=2048 \
+  inputs=("$corpus")
+  if [[ -d "$regressions" ]]; then inputs+=("$regressions"); fi  # a new target may have none yet
+  if ! "$exe" "${inputs[@]}" "${dict[@]}" -max_total_time="$seconds" -timeout=$HANG_SECONDS -rss_limit_mb=2048 \
        -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/$target-" >"$log" 2>&1; then
     tail -n 60 "$log"
     echo "$target: FAILED (artifact in $build/$target-*)"

@@ -40,7 +40,8 @@ std::string fresh_dir(const std::string& tag) {
   return dir.string();
 }
 
-CliResult run_strand(const std::string& args, const std::string& dir) {
+CliResult run_strand(const std::string& args, const std::string& where) {
+  const std::string dir = where.empty() ? fresh_dir("run") : where;
   const std::string out = dir + "/.stdout", err = dir + "/.stderr";
   const std::string cmd = "cd '" + dir + "' && '" + std::string(STRAND_CLI) + "' " + args +
                           " >'" + out + "' 2>'" + err + "'";

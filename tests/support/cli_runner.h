@@ -12,7 +12,9 @@ struct CliResult {
 };
 
 // `args` is appended to the binary path and run through the shell in `dir`.
-CliResult run_strand(const std::string& args, const std::string& dir = ".");
+// Without a directory it runs in a fresh one: tests run in parallel processes, and a shared
+// working directory would mix their captured output.
+CliResult run_strand(const std::string& args, const std::string& dir = "");
 // A fresh empty directory under the system temp dir, unique per call.
 std::string fresh_dir(const std::string& tag);
 std::string slurp(const std::string& path);
