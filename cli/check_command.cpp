@@ -77,7 +77,8 @@ int run_curved_check(const CheckArgs& a, const std::string& text,
   } else {
     report = post::check_rotary_gcode(text, a.file, machine);
   }
-  std::cout << (a.json ? post::to_json(report).dump(2) + "\n" : post::to_text(report));
+  // Text from the file (feature names, notes) may be any bytes: dump_json keeps it valid UTF-8.
+  std::cout << (a.json ? slicer::dump_json(post::to_json(report)) + "\n" : post::to_text(report));
   return report.ok() ? 0 : 1;
 }
 

@@ -66,6 +66,27 @@ TEST(CurvedCli, RotaryMachineWritesFourAxisGcodeThatChecksClean) {
   EXPECT_EQ(nlohmann::json::parse(check.out)["kind"], "rotary G-code");
 }
 
+// A move with bytes that are not UTF-8 (found by curved_fuzz): the finding quotes the line,
+// and the JSON report stays valid instead of failing the whole check.
+TEST(CurvedCli, ARotaryFileWithBinaryBytesStillGivesAJsonReport) {
+  const auto dir = fresh_dir("curved-binary");
+  ASSERT_EQ(run_strand(kMissingRib + "--substrate cylinder --substrate-radius 25 "
+                                     "--substrate-length 80" + kRotary + " -o r.gcode",
+                       dir)
+                .exit_code,
+            0);
+  std::string text = slurp(dir + "/r.gcode");
+  const auto move = text.find("\nG1 A");
+  ASSERT_NE(move, std::string::npos);
+  text.insert(text.find(" F", move) + 2, "\x9f");
+  std::ofstream(dir + "/r.gcode", std::ios::binary) << text;
+  const auto check = run_strand("check r.gcode --machine marlin-rotary-a --json", dir);
+  EXPECT_NE(check.exit_code, 2) << check.err;
+  const auto report = nlohmann::json::parse(check.out, nullptr, false);
+  EXPECT_FALSE(report.is_discarded()) << check.out.substr(0, 200);
+  EXPECT_EQ(report.value("kind", ""), "rotary G-code");
+}
+
 TEST(CurvedCli, ATamperedCsvFailsTheCheckWithExitOne) {
   const auto dir = fresh_dir("curved-tamper");
   ASSERT_EQ(

@@ -9,6 +9,7 @@
 #include "postprocess/inspect/curved_files.h"
 #include "postprocess/inspect/pose_check.h"
 #include "slicer/input_error.h"
+#include "slicer/json_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace strand;
@@ -19,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const post::PoseCheckReport report = post::is_rotary_gcode(text)
                                              ? post::check_rotary_gcode(text, "fuzz.gcode", &rotary)
                                              : post::check_pose_csv(text, "fuzz.csv", robot);
-    post::to_json(report).dump();
+    slicer::dump_json(post::to_json(report));  // as `strand check --json` prints it
   } catch (const InputError&) {
   }
   try {
