@@ -71,7 +71,9 @@ void check_on_cylinder(const std::vector<CylinderSample>& s, double touch_mm, Po
                                            fmt_fixed(lc.radius_mm, 4) + " mm");
       }
       const CylinderSample& from = s[i - 1];
-      if (i == b || !from.extrude) {  // a strand starts where the deposit starts
+      // A strand starts where the deposit starts (a file may start depositing at its very
+      // first sample: then no strand is open yet).
+      if (cl.strands.empty() || i == b || !from.extrude) {
         angle = std::atan2(from.p_mm.y(), from.p_mm.x());
         cl.strands.push_back({{slicer::Vec2(angle * lc.radius_mm, from.p_mm.z()), from.source}});
         ++lc.strands;

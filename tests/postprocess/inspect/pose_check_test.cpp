@@ -115,6 +115,15 @@ TEST(PoseCheck, CrossingsOnBothSidesOfTheSeamAreFound) {
   EXPECT_EQ(crossings_with(20.0), 0u) << "beyond the strand";
 }
 
+// A file that deposits from its very first pose (found by curved_fuzz: no strand was open
+// yet) is read as a strand starting there.
+TEST(PoseCheck, ADepositFromTheFirstPoseStartsAStrand) {
+  const std::string csv = with_cell(with_cell(thesis_csv(), 0, 10, "1"), 1, 10, "1");
+  const auto r = check_pose_csv(csv, "p.csv", cell());
+  ASSERT_FALSE(r.layers.empty());
+  EXPECT_GE(r.layers[0].strands, 1);
+}
+
 TEST(PoseCheck, RotaryFilesMapBackOntoTheirCylinder) {
   const std::string g = produced_main("scaffold-cylinder-rotary.json", "r.gcode");
   ASSERT_TRUE(is_rotary_gcode(g));
