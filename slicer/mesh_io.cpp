@@ -13,6 +13,7 @@
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/mesh_gltf.h"
+#include "slicer/mesh_header.h"
 #include "slicer/units.h"
 
 namespace strand::slicer {
@@ -107,6 +108,7 @@ Mesh read_mesh_file(const std::string& path) {
   if (ext == ".gltf" || ext == ".glb") {
     m = read_gltf(path);
   } else if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".off") {
+    if (ext == ".ply") vet_ply_header(path, size);
     m = read_openmesh(path, ext);
   } else {
     throw InputError("mesh = " + path + ": unknown format '" + ext +

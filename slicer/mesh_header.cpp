@@ -1,0 +1,97 @@
+// PLY headers checked line by line before OpenMesh reads the file.
+#include "slicer/mesh_header.h"
+
+#include <algorithm>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "slicer/input_error.h"
+
+namespace strand::slicer {
+
+namespace {
+
+const std::set<std::string> kPlyTypes = {"char",   "uchar",  "short",  "ushort",  "int",
+                                         "uint",   "float",  "double", "int8",    "uint8",
+                                         "int16",  "uint16", "int32",  "uint32",  "float32",
+                                         "float64"};
+
+struct PlyHeaderReader {
+  std::string path;
+  std::uintmax_t size_bytes = 0;
+  int line_no = 0;
+  bool format = false;
+
+  [[noreturn]] void fail(const std::string& why) const {
+    throw InputError("mesh = " + path + ": PLY header line " + std::to_string(line_no) + ": " + why);
+  }
+
+  void type(std::istringstream& w) const {
+    std::string t;
+    if (!(w >> t) || !kPlyTypes.count(t)) fail("a property type must be one of char .. float64");
+  }
+
+  void line(const std::string& text) {
+    ++line_no;
+    if (std::any_of(text.begin(), text.end(), [](char c) {
+          return c != '\t' && (static_cast<unsigned char>(c) < 0x20 || c == 0x7f);
+        })) {
+      fail("holds a byte that is not text");
+    }
+    std::istringstream w(text);
+    std::string key;
+    w >> key;
+    if (line_no == 1) {
+      if (key != "ply") fail("the file must start with 'ply'");
+    } else if (key == "format") {
+      std::string kind;
+      w >> kind;
+      if (kind != "ascii" && kind != "binary_little_endian" && kind != "binary_big_endian")
+        fail("format must be ascii, binary_little_endian or binary_big_endian");
+      format = true;
+    } else if (key == "element") {
+      std::string name;
+      double count = -1.0;
+      if (!(w >> name >> count) || count < 0 || count > static_cast<double>(size_bytes))
+        fail("an element count must be 0 .. " + std::to_string(size_bytes) + " (the file's bytes)");
+    } else if (key == "property") {
+      std::string first;
+      w >> first;
+      if (first == "list") {
+        type(w);
+        type(w);
+      } else if (!kPlyTypes.count(first)) {
+        fail("a property type must be one of char .. float64");
+      }
+      std::string name;
+      if (!(w >> name)) fail("a property needs a name");
+    } else if (!key.empty() && key != "comment" && key != "obj_info") {
+      fail("'" + key.substr(0, 20) + "' is not a PLY header keyword");
+    }
+  }
+};
+
+}  // namespace
+
+void vet_ply_header(const std::string& path, std::uintmax_t size_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(static_cast<std::size_t>(std::min<std::uintmax_t>(size_bytes, kMaxPlyHeaderBytes)), '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  PlyHeaderReader r{path, size_bytes};
+  const std::size_t end = head.find("\nend_header");
+  if (end == std::string::npos) {
+    r.line_no = 0;
+    r.fail("no end_header line in the first " + std::to_string(kMaxPlyHeaderBytes / 1024) + " KiB");
+  }
+  std::istringstream lines(head.substr(0, end));
+  std::string text;
+  while (std::getline(lines, text)) {
+    if (!text.empty() && text.back() == '\r') text.pop_back();
+    r.line(text);
+  }
+  if (!r.format) r.fail("no format line before end_header");
+}
+
+}  // namespace strand::slicer
