@@ -22,6 +22,7 @@ struct PlyHeaderReader {
   std::uintmax_t size_bytes = 0;
   int line_no = 0;
   bool format = false;
+  int elements = 0;  // a property belongs to the element line above it
 
   [[noreturn]] void fail(const std::string& why) const {
     throw InputError("mesh = " + path + ": PLY header line " + std::to_string(line_no) + ": " + why);
@@ -55,7 +56,10 @@ struct PlyHeaderReader {
       double count = -1.0;
       if (!(w >> name >> count) || count < 0 || count > static_cast<double>(size_bytes))
         fail("an element count must be 0 .. " + std::to_string(size_bytes) + " (the file's bytes)");
+      ++elements;
     } else if (key == "property") {
+      // OpenMesh adds it to the last element, and crashes when there is none (mesh_fuzz).
+      if (elements == 0) fail("a property before any element line");
       std::string first;
       w >> first;
       if (first == "list") {

@@ -14,7 +14,8 @@ inline constexpr std::size_t kMaxPlyHeaderBytes = 64 * 1024;
 // Throws InputError "mesh = PATH: PLY header ..." unless the header is text, starts with
 // `ply`, has one `format ascii|binary_little_endian|binary_big_endian 1.0` line, only
 // `comment`/`obj_info`/`element NAME COUNT`/`property TYPE NAME`/`property list TYPE TYPE
-// NAME` lines, element counts the file's `size_bytes` can hold, and ends with `end_header`.
+// NAME` lines (each property after an element line), element counts the file's
+// `size_bytes` can hold, and ends with `end_header`.
 void vet_ply_header(const std::string& path, std::uintmax_t size_bytes);
 
 }  // namespace strand::slicer

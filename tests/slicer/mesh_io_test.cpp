@@ -174,6 +174,12 @@ TEST(MeshIo, PlyHeadersAreCheckedBeforeOpenMeshReadsThem) {
             std::string::npos);
   EXPECT_NE(error_of(dir + "/nohead.ply").find("no end_header line"), std::string::npos);
   EXPECT_NE(error_of(dir + "/type.ply").find("a property type must be one of"), std::string::npos);
+  write_file_atomic(dir + "/orphan.ply",  // OpenMesh crashed on it (mesh_fuzz)
+                    "ply\nformat ascii 1.0\nproperty float z\nelement face 1\n"
+                    "property list uchar int vertex_indices\nend_header\n3 0 1 2\n");
+  EXPECT_NE(error_of(dir + "/orphan.ply").find("line 3: a property before any element line"),
+            std::string::npos)
+      << error_of(dir + "/orphan.ply");
 }
 
 }  // namespace
