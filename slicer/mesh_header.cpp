@@ -84,7 +84,13 @@ void vet_ply_header(const std::string& path, std::uintmax_t size_bytes) {
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
   PlyHeaderReader r{path, size_bytes};
-  const std::size_t end = head.find("\nend_header");
+  // The line must be exactly end_header: OpenMesh looped without end on "end_headernt v 0"
+  // (mesh_fuzz).
+  std::size_t end = head.find("\nend_header");
+  while (end != std::string::npos && head.compare(end + 11, 1, "\n") != 0 &&
+         head.compare(end + 11, 2, "\r\n") != 0) {
+    end = head.find("\nend_header", end + 1);
+  }
   if (end == std::string::npos) {
     r.line_no = 0;
     r.fail("no end_header line in the first " + std::to_string(kMaxPlyHeaderBytes / 1024) + " KiB");

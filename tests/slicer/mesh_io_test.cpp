@@ -173,6 +173,9 @@ TEST(MeshIo, PlyHeadersAreCheckedBeforeOpenMeshReadsThem) {
   EXPECT_NE(error_of(dir + "/huge.ply").find("PLY header line 3: an element count must be 0 .."),
             std::string::npos);
   EXPECT_NE(error_of(dir + "/nohead.ply").find("no end_header line"), std::string::npos);
+  write_file_atomic(dir + "/glued.ply",  // OpenMesh looped without end on it (mesh_fuzz)
+                    "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_headernt v 0\n");
+  EXPECT_NE(error_of(dir + "/glued.ply").find("no end_header line"), std::string::npos);
   EXPECT_NE(error_of(dir + "/type.ply").find("a property type must be one of"), std::string::npos);
   write_file_atomic(dir + "/orphan.ply",  // OpenMesh crashed on it (mesh_fuzz)
                     "ply\nformat ascii 1.0\nproperty float z\nelement face 1\n"
