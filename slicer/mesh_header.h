@@ -18,4 +18,10 @@ inline constexpr std::size_t kMaxPlyHeaderBytes = 64 * 1024;
 // `size_bytes` can hold, and ends with `end_header`.
 void vet_ply_header(const std::string& path, std::uintmax_t size_bytes);
 
+// OpenMesh's OFF reader loops for as long as its counts say when a number does not parse (a
+// garbled count line took minutes: mesh_fuzz). Throws InputError "mesh = PATH: OFF ..." unless
+// the file is ASCII OFF whose every token outside `#` comments is a number, with vertex and
+// face counts the file's `size_bytes` can hold.
+void vet_off_file(const std::string& path, std::uintmax_t size_bytes);
+
 }  // namespace strand::slicer

@@ -109,6 +109,7 @@ Mesh read_mesh_file(const std::string& path) {
     m = read_gltf(path);
   } else if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".off") {
     if (ext == ".ply") vet_ply_header(path, size);
+    if (ext == ".off") vet_off_file(path, size);
     m = read_openmesh(path, ext);
   } else {
     throw InputError("mesh = " + path + ": unknown format '" + ext +

@@ -26,6 +26,12 @@ for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz ima
   exe="$build/tests/fuzz/$target"
   regressions="$src/tests/fuzz/regressions/$target"
   corpus="$build/fuzz-corpus/$target"
+  repeat=()
+  if [[ -n "${FUZZ_SEED:-}" ]]; then  # a repeatable run: fixed seed, fresh corpus, run count
+    corpus="$build/fuzz-corpus-seeded/$target"
+    rm -rf "$corpus"
+    repeat=(-seed="$FUZZ_SEED" -runs="${FUZZ_RUNS:-20000}")
+  fi
   mkdir -p "$corpus"
   for f in $(seeds "$target"); do cp -f "$f" "$corpus/"; done
   if compgen -G "$regressions/*" >/dev/null; then
@@ -37,7 +43,7 @@ for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz ima
   if [[ -f "$src/tests/fuzz/$target.dict" ]]; then dict=(-dict="$src/tests/fuzz/$target.dict"); fi
   inputs=("$corpus")
   if [[ -d "$regressions" ]]; then inputs+=("$regressions"); fi  # a new target may have none yet
-  if ! "$exe" "${inputs[@]}" "${dict[@]}" -max_total_time="$seconds" -timeout=$HANG_SECONDS -rss_limit_mb=2048 \
+  if ! "$exe" "${inputs[@]}" "${dict[@]}" "${repeat[@]}" -max_total_time="$seconds" -timeout=$HANG_SECONDS -rss_limit_mb=2048 \
        -max_len=65536 -print_final_stats=1 -artifact_prefix="$build/$target-" >"$log" 2>&1; then
     tail -n 60 "$log"
     echo "$target: FAILED (artifact in $build/$target-*)"

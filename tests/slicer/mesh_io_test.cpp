@@ -185,5 +185,20 @@ TEST(MeshIo, PlyHeadersAreCheckedBeforeOpenMeshReadsThem) {
       << error_of(dir + "/orphan.ply");
 }
 
+// OpenMesh's OFF reader loops for as long as its counts say when a number does not parse
+// (found by mesh_fuzz): such files are refused first.
+TEST(MeshIo, OffFilesWithTokensThatAreNotNumbersAreRefused) {
+  const auto dir = testing::fresh_dir("mesh-off");
+  write_file_atomic(dir + "/garbled.off", "OFF 400=aM--M--M je 43\n0 0 0\n");
+  write_file_atomic(dir + "/huge.off", "OFF\n# a comment may hold anything: x\n9e9 1 0\n0 0 0\n");
+  write_file_atomic(dir + "/binary.off", "OFF BINARY\n");
+  EXPECT_NE(error_of(dir + "/garbled.off").find("OFF token 2 is not a number"), std::string::npos)
+      << error_of(dir + "/garbled.off");
+  EXPECT_NE(error_of(dir + "/huge.off").find("OFF vertex count must be a whole number 0 .."),
+            std::string::npos)
+      << error_of(dir + "/huge.off");
+  EXPECT_NE(error_of(dir + "/binary.off").find("binary files are not read"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace strand::slicer
