@@ -26,6 +26,7 @@ struct PlyHeaderReader {
   int line_no = 0;
   bool format = false;
   int elements = 0;  // a property belongs to the element line above it
+  std::set<std::string> names;
 
   [[noreturn]] void fail(const std::string& why) const {
     throw InputError("mesh = " + path + ": PLY header line " + std::to_string(line_no) + ": " + why);
@@ -49,10 +50,11 @@ struct PlyHeaderReader {
     if (line_no == 1) {
       if (key != "ply") fail("the file must start with 'ply'");
     } else if (key == "format") {
-      std::string kind;
-      w >> kind;
+      std::string kind, version;
+      w >> kind >> version;
       if (kind != "ascii" && kind != "binary_little_endian" && kind != "binary_big_endian")
         fail("format must be ascii, binary_little_endian or binary_big_endian");
+      if (version != "1.0") fail("the format version must be 1.0");
       format = true;
     } else if (key == "element") {
       std::string name;
@@ -60,6 +62,7 @@ struct PlyHeaderReader {
       if (!(w >> name >> count) || count < 0 || count > static_cast<double>(size_bytes))
         fail("an element count must be 0 .. " + std::to_string(size_bytes) + " (the file's bytes)");
       ++elements;
+      names.insert(name);
     } else if (key == "property") {
       // OpenMesh adds it to the last element, and crashes when there is none (mesh_fuzz).
       if (elements == 0) fail("a property before any element line");
@@ -76,6 +79,9 @@ struct PlyHeaderReader {
     } else if (!key.empty() && key != "comment" && key != "obj_info") {
       fail("'" + key.substr(0, 20) + "' is not a PLY header keyword");
     }
+    std::string extra;  // OpenMesh looped without end on a format line with more words
+    if (key != "comment" && key != "obj_info" && (w >> extra))
+      fail("unexpected '" + extra.substr(0, 20) + "' at the end of the line");
   }
 };
 
@@ -105,6 +111,8 @@ void vet_ply_header(const std::string& path, std::uintmax_t size_bytes) {
     r.line(text);
   }
   if (!r.format) r.fail("no format line before end_header");
+  if (!r.names.count("vertex") || !r.names.count("face"))
+    r.fail("a triangle mesh needs 'element vertex' and 'element face' lines");
 }
 
 void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {

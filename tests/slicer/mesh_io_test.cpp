@@ -176,6 +176,11 @@ TEST(MeshIo, PlyHeadersAreCheckedBeforeOpenMeshReadsThem) {
   write_file_atomic(dir + "/glued.ply",  // OpenMesh looped without end on it (mesh_fuzz)
                     "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_headernt v 0\n");
   EXPECT_NE(error_of(dir + "/glued.ply").find("no end_header line"), std::string::npos);
+  write_file_atomic(dir + "/format.ply",  // OpenMesh looped without end on it (mesh_fuzz)
+                    "ply\nformat ascii uchaq hnt vertex_indices\nend_header\n0 0 0\n");
+  EXPECT_NE(error_of(dir + "/format.ply").find("line 2: the format version must be 1.0"),
+            std::string::npos)
+      << error_of(dir + "/format.ply");
   EXPECT_NE(error_of(dir + "/type.ply").find("a property type must be one of"), std::string::npos);
   write_file_atomic(dir + "/orphan.ply",  // OpenMesh crashed on it (mesh_fuzz)
                     "ply\nformat ascii 1.0\nproperty float z\nelement face 1\n"
