@@ -41,7 +41,12 @@ build: deps
 run: build
 	@./samples/run_demo.sh $(STRAND) out
 
+# Test-only tools: javac/java compile and run the generated Sunrise programs against stand-in
+# classes (tests/machines/sunrise_writer_test.cpp).
+TEST_PACKAGES := openjdk-17-jdk-headless
+
 test: build
+	@$(MAKE) deps DEBIAN_PACKAGES="$(TEST_PACKAGES)"
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$$(nproc)
 
 # One table of the issue-13 figures (cpu, memory per move/stroke, pen-up travel, check and
@@ -60,6 +65,7 @@ sanitize-build: deps
 
 # Every test under AddressSanitizer + UndefinedBehaviorSanitizer (any report fails the test).
 sanitize: sanitize-build
+	@$(MAKE) deps DEBIAN_PACKAGES="$(TEST_PACKAGES)"
 	@cd $(SAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
 	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \

@@ -83,7 +83,7 @@ void add_generator_commands(CLI::App& app, Action& action) {
     sub->add_option("--machine", args->machine, "machine profile name or path to a .json profile (default deltawasp-2040-clay)");
     sub->add_option("-o,--output", args->output,
                     "G-code file to write (default " + spec.name +
-                        ".gcode; a robot cell writes <name>.csv with .java, .src, .dat, .extruder.gcode)");
+                        ".gcode; a robot cell writes <name>.csv with <Class>.java, <module>.src/.dat, .extruder.gcode)");
     sub->add_option("--report", args->report, "write a JSON report here");
     sub->add_option("--arc-tolerance", args->arc_tolerance_mm,
                     "max chord error when arcs become G1 segments [mm] (default 0.01)");

@@ -36,7 +36,7 @@ class Writer {
 
  private:
   void prologue() {
-    for (const auto& h : info_.header) out_ += (h.empty() ? ";" : "; " + h) + "\n";
+    for (const auto& h : info_.header) out_ += (h.empty() ? ";" : "; " + comment_text(h)) + "\n";
     out_ += "M83 ; relative E\n";
     for (const auto& l : m_.start_gcode) out_ += l + "\n";
     const Vec3& park = m_.robot.extruder.park_mm;
@@ -53,9 +53,15 @@ class Writer {
             fmt_fixed(slicer::rad_to_deg(l.turn_min_rad), 1) + " to " +
             fmt_fixed(slicer::rad_to_deg(l.turn_max_rad), 1) + " deg\n";
     const auto& x = m_.robot.extruder;
+    const int level = lap_signal_level(m_.robot, lap);
+    if (x.ready_pin >= 0) {
+      // Two-way handshake: the previous lap's moves done, tell the robot this lap may start.
+      out_ += "M400 ; finish the previous lap\n";
+      out_ += "M42 P" + std::to_string(x.ready_pin) + " S" + (level == 1 ? "255" : "0") +
+              " ; ready for lap " + std::to_string(lap) + "\n";
+    }
     if (x.handshake_pin >= 0) {
-      out_ += "M226 P" + std::to_string(x.handshake_pin) + " S" +
-              std::to_string(lap_signal_level(m_.robot, lap)) +
+      out_ += "M226 P" + std::to_string(x.handshake_pin) + " S" + std::to_string(level) +
               " ; wait for the robot's lap signal\n";
     }
   }

@@ -2,6 +2,10 @@
 #include "machines/holder_profile.h"
 
 #include <cmath>
+#include <utility>
+
+#include "machines/program_text.h"
+#include "slicer/input_error.h"
 
 namespace strand::machines {
 
@@ -32,6 +36,7 @@ ExtruderSetup read_extruder(const nlohmann::json& e) {
   x.time_based = e.value("e_per_mm", std::string("time-based")) == "time-based";
   x.handshake_pin = e.value("handshake_pin", x.handshake_pin);
   x.handshake_state = e.value("handshake_state", x.handshake_state);
+  x.ready_pin = e.value("ready_pin", x.ready_pin);
   return x;
 }
 
@@ -46,7 +51,26 @@ RobotPrograms read_programs(const nlohmann::json& r) {
   p.krl_base_index = k.value("base_index", p.krl_base_index);
   p.krl_lap_output = k.value("lap_output", p.krl_lap_output);
   p.krl_points_per_module = k.value("points_per_module", p.krl_points_per_module);
+  p.sunrise_ready_signal = s.value("ready_signal", p.sunrise_ready_signal);
+  p.krl_ready_input = k.value("ready_input", p.krl_ready_input);
   return p;
+}
+
+RobotMotionSetup read_motion(const nlohmann::json& r) {
+  RobotMotionSetup m;
+  m.approach_mm = r.value("approach_mm", m.approach_mm);
+  m.retract_mm = r.value("retract_mm", m.retract_mm);
+  if (r.contains("home_joints_deg")) {
+    std::array<double, 7> home{};
+    const auto& h = r.at("home_joints_deg");
+    for (std::size_t i = 0; i < 7 && i < h.size(); ++i) home[i] = h[i].get<double>();
+    m.home_joints_deg = home;
+  }
+  m.ptp_velocity_percent = r.value("ptp_velocity_percent", m.ptp_velocity_percent);
+  const auto load = r.value("load", nlohmann::json::object());
+  m.load_mass_kg = load.value("mass_kg", m.load_mass_kg);
+  m.load_cog_mm = vec3_or(load, "cog_mm", m.load_cog_mm);
+  return m;
 }
 
 }  // namespace
@@ -91,6 +115,34 @@ RobotCell read_robot_cell(const nlohmann::json& j, const std::string& origin,
   c.mount_rotation_deg = r.value("mount_rotation_deg", c.mount_rotation_deg);
   c.extruder = read_extruder(j.at("extruder"));
   c.programs = read_programs(r);
+  c.motion = read_motion(r);
+  if (c.motion.home_joints_deg) {
+    if (r.at("home_joints_deg").size() != 7)
+      problems.push_back(where + ".home_joints_deg: must list 7 joints (A1..A7)");
+    for (std::size_t i = 0; i < 7; ++i) {
+      if (std::abs((*c.motion.home_joints_deg)[i]) > c.joint_limits_deg[i]) {
+        problems.push_back(where + ".home_joints_deg: A" + std::to_string(i + 1) +
+                           " is beyond its joint limit");
+        break;
+      }
+    }
+  }
+  // Pasted into the Sunrise program as code (a type and method names): identifiers only.
+  for (const auto& [key, value] : {std::pair{"io_group", c.programs.sunrise_io_group},
+                                   std::pair{"lap_signal", c.programs.sunrise_lap_signal}}) {
+    try {
+      require_java_identifier(where + ".sunrise." + key, value);
+    } catch (const InputError& e) {
+      problems.push_back(e.what());
+    }
+  }
+  if (!c.programs.sunrise_ready_signal.empty()) {
+    try {
+      require_java_identifier(where + ".sunrise.ready_signal", c.programs.sunrise_ready_signal);
+    } catch (const InputError& e) {
+      problems.push_back(e.what());
+    }
+  }
   return c;
 }
 

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct ExtruderSetup {
   bool time_based = true;           // E per mm = v_ext / v_cart; false: bead volume / mm3 per E
   int handshake_pin = -1;           // M226 P<pin> S<state> before each lap; -1 = none
   int handshake_state = 1;
+  int ready_pin = -1;  // M42 P<pin>: "parked and ready for lap k" to the robot; -1 = none
 };
 
 // What the Sunrise and KRL programs need beyond the geometry.
@@ -34,6 +36,19 @@ struct RobotPrograms {
   int krl_base_index = 1;            // BASE_DATA[n]: the fixed nozzle (external TCP)
   int krl_lap_output = 1;            // $OUT[n] pulsed at each lap start
   int krl_points_per_module = 2000;  // LIN points per sub-program
+  // Two-way handshake: the robot waits for the extruder's ready level before each lap.
+  std::string sunrise_ready_signal;  // boolean input of the I/O group; empty = no wait
+  int krl_ready_input = 0;           // $IN[n]; 0 = no wait
+};
+
+// Where the robot program starts and ends, and what it carries.
+struct RobotMotionSetup {
+  double approach_mm = 20.0;  // first pose approached from this far along the nozzle axis
+  double retract_mm = 20.0;   // and left the same way after the last
+  std::optional<std::array<double, 7>> home_joints_deg;  // PTP here first and last
+  int ptp_velocity_percent = 10;                         // of each axis' maximum
+  double load_mass_kg = 0.0;                             // the workpiece and its adapter
+  Vec3 load_cog_mm = Vec3::Zero();                       // in the flange frame
 };
 
 struct RobotCell {
@@ -53,6 +68,7 @@ struct RobotCell {
   double mount_rotation_deg = 0.0;  // cylinder u = 0 line about flange z from flange +x
   ExtruderSetup extruder;
   RobotPrograms programs;
+  RobotMotionSetup motion;
 };
 
 struct RotaryAxis {

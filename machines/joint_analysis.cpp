@@ -129,4 +129,17 @@ JointReport analyse_joints(const ArmModel& arm, const RobotCell& cell,
   return out;
 }
 
+Joints start_joints(const RobotCell& cell, const slicer::PosePoint& first) {
+  const JointReport j = analyse_joints(lbr_iiwa_14_r820(cell), cell, {first}, true);
+  return j.ok() && !j.solutions.empty() ? j.solutions.front() : Joints::Zero();
+}
+
+slicer::PosePoint moved_along_nozzle(const RobotCell& cell, const slicer::PosePoint& p,
+                                     double away_mm) {
+  slicer::PosePoint out = p;
+  out.workpiece_origin_mm += away_mm * cell.nozzle_axis;
+  out.contact_mm -= away_mm * (rotation_of(p.workpiece_wxyz).transpose() * cell.nozzle_axis);
+  return out;
+}
+
 }  // namespace strand::machines

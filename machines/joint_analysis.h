@@ -39,4 +39,15 @@ JointReport analyse_joints(const ArmModel& arm, const RobotCell& cell,
                            const std::vector<slicer::PosePoint>& points,
                            bool keep_solutions = false, std::size_t max_problems = 1000);
 
+// Joint values (A1..A7, rad) of the first pose of a program, as analyse_joints finds them, so
+// that robot programs can start by axis values (no Status/Turn or elbow left to the
+// controller). Zero when the pose has no solution (produce_curved refuses such programs).
+Joints start_joints(const RobotCell& cell, const slicer::PosePoint& first);
+
+// `p` with the workpiece moved `away_mm` along the nozzle axis (the flow), away from the fixed
+// tip: the approach and retract poses. The contact point (the tip in the workpiece frame)
+// moves back against the flow by the same distance.
+slicer::PosePoint moved_along_nozzle(const RobotCell& cell, const slicer::PosePoint& p,
+                                     double away_mm);
+
 }  // namespace strand::machines

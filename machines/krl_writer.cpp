@@ -7,6 +7,8 @@
 
 #include "machines/extruder_gcode.h"
 #include "machines/gcode_format.h"
+#include "machines/joint_analysis.h"
+#include "machines/program_text.h"
 #include "machines/workpiece_pose.h"
 #include "slicer/units.h"
 
@@ -15,6 +17,8 @@ namespace strand::machines {
 namespace {
 
 constexpr std::size_t kMaxKrlName = 24;  // KRL identifiers
+// cos B below which A, B, C are taken as gimbal-locked (B = +-90 deg).
+constexpr double kGimbalCosB = 1e-9;
 
 std::string frame_text(const Vec3& p, const Vec3& abc) {
   return "{X " + fmt_fixed(p.x(), 4) + ", Y " + fmt_fixed(p.y(), 4) + ", Z " + fmt_fixed(p.z(), 4) +
@@ -32,7 +36,7 @@ struct Piece {
 
 // Laps own the points whose motion they execute (point 0 is the start, reached by PTP);
 // laps longer than `per_module` points are cut into several sub-programs.
-std::vector<Piece> pieces(const slicer::PoseProgram& p, const std::string& module, int per_module) {
+std::vector<Piece> pieces(const slicer::PoseProgram& p, int per_module) {
   std::vector<Piece> out;
   const auto& pts = p.points;
   for (std::size_t i = 1; i < pts.size();) {
@@ -41,8 +45,8 @@ std::vector<Piece> pieces(const slicer::PoseProgram& p, const std::string& modul
     const std::size_t n = j - i + 1;
     const std::size_t parts = (n + per_module - 1) / per_module;
     for (std::size_t k = 0; k < parts; ++k) {
-      const std::string name = "L" + std::to_string(pts[i].lap) + "P" + std::to_string(k + 1);
-      out.push_back({module.substr(0, kMaxKrlName - name.size() - 1) + "_" + name,
+      // Local sub-programs: their names only need to be unique inside the module.
+      out.push_back({"LAP" + std::to_string(pts[i].lap) + "_P" + std::to_string(k + 1),
                      i + n * k / parts, i + n * (k + 1) / parts - 1, pts[i].lap, k == 0});
     }
     i = j + 1;
@@ -56,7 +60,9 @@ std::string krl_module_name(const std::string& base) {
   std::string out;
   for (char c : base) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
   if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out = "S" + out;
-  return out.substr(0, kMaxKrlName - 8);  // room for the sub-program suffixes
+  out = out.substr(0, kMaxKrlName);
+  if (is_krl_keyword(out)) out = ("S_" + out).substr(0, kMaxKrlName);
+  return out;
 }
 
 Eigen::Matrix3d nozzle_frame_rotation(const RobotCell& c) {
@@ -68,10 +74,28 @@ Eigen::Matrix3d nozzle_frame_rotation(const RobotCell& c) {
 }
 
 Vec3 kuka_abc_deg(const Eigen::Matrix3d& m) {
-  const double a = std::atan2(m(1, 0), m(0, 0));
-  const double b = std::atan2(-m(2, 0), std::hypot(m(2, 1), m(2, 2)));
-  const double c = std::atan2(m(2, 1), m(2, 2));
+  // B from the first column; A from it too unless B = +-90 deg (gimbal lock, where only A -+ C
+  // is defined: C = 0 and A from the second column). C is then solved from A, so the three
+  // angles always give back m, even where A alone is ill-conditioned (two independent atan2
+  // calls of near-zero pairs can disagree by 180 deg: a flipped target).
+  const double cos_b = std::hypot(m(0, 0), m(1, 0));
+  const double b = std::atan2(-m(2, 0), cos_b);
+  double a = 0.0, c = 0.0;
+  if (cos_b < kGimbalCosB) {
+    a = std::atan2(-m(0, 1), m(1, 1));
+  } else {
+    a = std::atan2(m(1, 0), m(0, 0));
+    const double sa = std::sin(a), ca = std::cos(a);
+    c = std::atan2(sa * m(0, 2) - ca * m(1, 2), ca * m(1, 1) - sa * m(0, 1));
+  }
   return Vec3(slicer::rad_to_deg(a), slicer::rad_to_deg(b), slicer::rad_to_deg(c));
+}
+
+Eigen::Matrix3d kuka_abc_rotation(const Vec3& abc_deg) {
+  return (Eigen::AngleAxisd(slicer::deg_to_rad(abc_deg.x()), Vec3::UnitZ()) *
+          Eigen::AngleAxisd(slicer::deg_to_rad(abc_deg.y()), Vec3::UnitY()) *
+          Eigen::AngleAxisd(slicer::deg_to_rad(abc_deg.z()), Vec3::UnitX()))
+      .toRotationMatrix();
 }
 
 KrlProgram write_krl(const slicer::PoseProgram& p, const MachineProfile& m, const std::string& base,
@@ -80,24 +104,63 @@ KrlProgram write_krl(const slicer::PoseProgram& p, const MachineProfile& m, cons
   const std::string module = krl_module_name(base);
   const Eigen::Matrix3d nozzle = nozzle_frame_rotation(c);
   KrlProgram out;
-  const auto subs = pieces(p, module, c.programs.krl_points_per_module);
+  const auto subs = pieces(p, c.programs.krl_points_per_module);
   out.sub_programs = static_cast<int>(subs.size());
   std::string& s = out.src;
   s = "&ACCESS RVP\nDEF " + module + "()\n";
-  for (const auto& h : header) s += "; " + h + "\n";
-  if (module != base)
-    s += "; KSS loads a module whose file name is its DEF name: save as " + module + ".src/.dat\n";
-  s += "  BAS(#INITMOV, 0)\n  $TOOL = workpiece_on_flange\n  $BASE = nozzle_in_world\n";
-  s +=
-      "  $IPO_MODE = #BASE ; external TCP: the robot carries the workpiece past the fixed nozzle\n";
+  for (const auto& h : header) s += "; " + program_comment_text(h) + "\n";
+  const RobotMotionSetup& mo = c.motion;
+  s += "  BAS(#INITMOV, 0)\n  BAS(#VEL_PTP, " + std::to_string(mo.ptp_velocity_percent) +
+       ")\n  BAS(#ACC_PTP, " + std::to_string(mo.ptp_velocity_percent) + ")\n";
+  s += "  $TOOL = workpiece_on_flange\n  $BASE = nozzle_in_world\n";
+  if (mo.load_mass_kg > 0.0) {
+    const Vec3& g = mo.load_cog_mm;
+    s += "  $LOAD = {M " + fmt_fixed(mo.load_mass_kg, 3) + ", CM {X " + fmt_fixed(g.x(), 3) +
+         ", Y " + fmt_fixed(g.y(), 3) + ", Z " + fmt_fixed(g.z(), 3) +
+         ", A 0.0, B 0.0, C 0.0}, J {X 0.0, Y 0.0, Z 0.0}} ; the workpiece on the flange\n";
+  }
+  s += "  $IPO_MODE = #TCP ; external TCP: the nozzle is fixed, the robot carries the workpiece; "
+       "LIN frames are the nozzle in the workpiece frame\n";
   s += "  $APO.CDIS = " + fmt_fixed(blend_mm, 3) + "\n  $ADVANCE = 3\n";
-  const Vec3& first = p.points.front().contact_mm;
-  const Eigen::Matrix3d r0 = rotation_of(p.points.front().workpiece_wxyz).transpose() * nozzle;
-  s += "  PTP " + frame_text(first, kuka_abc_deg(r0)) + " ; backed off above the first point\n";
+  const auto axes = [](const Joints& q, const std::string& what) {
+    std::string t = "  PTP {E6AXIS: A1 " + fmt_fixed(slicer::rad_to_deg(q[0]), 4);
+    for (int i = 1; i < 6; ++i)
+      t += ", A" + std::to_string(i + 1) + " " + fmt_fixed(slicer::rad_to_deg(q[i]), 4);
+    return t + ", E1 " + fmt_fixed(slicer::rad_to_deg(q[6]), 4) + "} ; " + what + "\n";
+  };
+  Joints home = Joints::Zero();
+  if (mo.home_joints_deg) {
+    for (int i = 0; i < 7; ++i) home[i] = slicer::deg_to_rad((*mo.home_joints_deg)[i]);
+    s += axes(home, "home (E1 = A7 of the LBR)");
+  }
+  // The start: axis values of the approach pose (approach_mm from the first pose along the
+  // nozzle axis), so neither Status/Turn nor the redundant elbow (E1 = A7 of the LBR) is left
+  // to the controller; then straight onto the first pose.
+  const auto& first = p.points.front();
+  const auto frame_of = [&](const slicer::PosePoint& pt) {
+    return frame_text(pt.contact_mm,
+                      kuka_abc_deg(rotation_of(pt.workpiece_wxyz).transpose() * nozzle));
+  };
+  s += axes(start_joints(c, moved_along_nozzle(c, first, mo.approach_mm)),
+            "approach: " + fmt_fixed(mo.approach_mm, 1) +
+                " mm from the first pose along the nozzle axis");
+  s += "  $VEL.CP = " + fmt_fixed(c.travel_speed_mm_per_s / 1000.0, 6) + " ; m/s\n";
+  s += "  LIN " + frame_of(first) + " ; onto the first pose\n";
   for (const auto& sub : subs) s += "  " + sub.name + "()\n";
+  s += "  $VEL.CP = " + fmt_fixed(c.travel_speed_mm_per_s / 1000.0, 6) + " ; m/s\n";
+  s += "  LIN " + frame_of(moved_along_nozzle(c, p.points.back(), mo.retract_mm)) +
+       " ; retract along the nozzle axis\n";
+  if (mo.home_joints_deg) s += axes(home, "home");
   s += "END\n";
+  std::string previous_frame = frame_of(first);
   for (const auto& sub : subs) {
     s += "\nDEF " + sub.name + "()\n";
+    if (sub.starts_lap && c.programs.krl_ready_input > 0) {
+      // Two-way handshake: the extruder is parked and ready with this lap's level.
+      s += "  WAIT FOR $IN[" + std::to_string(c.programs.krl_ready_input) +
+           "] == " + (lap_signal_level(c, sub.lap) == 1 ? "TRUE" : "FALSE") +
+           " ; the extruder is ready for lap " + std::to_string(sub.lap) + "\n";
+    }
     if (sub.starts_lap) {
       // Switched on the path (not in the advance run) as the lap's first motion starts.
       s += "  TRIGGER WHEN DISTANCE=0 DELAY=0 DO $OUT[" +
@@ -108,12 +171,15 @@ KrlProgram write_krl(const slicer::PoseProgram& p, const MachineProfile& m, cons
     double speed = -1.0;
     for (std::size_t i = sub.first; i <= sub.last; ++i) {
       const auto& pt = p.points[i];
+      const Eigen::Matrix3d r = rotation_of(pt.workpiece_wxyz).transpose() * nozzle;
+      std::string frame = frame_text(pt.contact_mm, kuka_abc_deg(r));
+      if (frame == previous_frame) continue;  // a zero-length motion: nothing to move
+      previous_frame = frame;
       if (pt.speed_mm_per_s != speed) {
         speed = pt.speed_mm_per_s;
         s += "  $VEL.CP = " + fmt_fixed(speed / 1000.0, 6) + " ; m/s\n";
       }
-      const Eigen::Matrix3d r = rotation_of(pt.workpiece_wxyz).transpose() * nozzle;
-      s += "  LIN " + frame_text(pt.contact_mm, kuka_abc_deg(r)) + " C_DIS\n";
+      s += "  LIN " + frame + " C_DIS\n";
       ++out.lin_points;
     }
     s += "END\n";

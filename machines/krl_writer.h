@@ -1,8 +1,11 @@
 // KUKA KRL program of a robot cell for a KR C4 (.src + .dat): the workpiece is carried by the
-// robot and the nozzle is an external TCP ($IPO_MODE = #BASE, $TOOL = workpiece on the flange,
+// robot and the nozzle is an external TCP ($IPO_MODE = #TCP, $TOOL = workpiece on the flange,
 // $BASE = nozzle), so each LIN point is the nozzle's pose in the workpiece frame (X, Y, Z in mm,
-// A, B, C in degrees) and $VEL.CP (m/s) is the speed of the contact over the workpiece.
-// Each lap is a sub-program, split further when longer than the profile's points per module.
+// A, B, C in degrees) and $VEL.CP (m/s) is the speed of the contact over the workpiece. The
+// program starts with a PTP to the first pose's axis values (from the arm's inverse
+// kinematics). Each lap is a local sub-program, split further when longer than the profile's
+// points per module. The module is named by krl_module_name, and KSS wants the files named
+// after it (`<module>.src`, `<module>.dat`).
 #pragma once
 
 #include <string>
@@ -20,11 +23,14 @@ struct KrlProgram {
   int lin_points = 0;
 };
 
-// A KRL module name for an output base name: letters, digits and _ (max 24 characters).
+// A KRL module name for an output base name: letters, digits and _ (at most 24 characters,
+// not starting with a digit, not a KRL keyword).
 std::string krl_module_name(const std::string& base_name);
 
-// KUKA A, B, C angles (Z, Y', X'' rotations) of a rotation, degrees.
+// KUKA A, B, C angles (Z, Y', X'' rotations) of a rotation, degrees; exact at B = +-90 deg
+// too (C = 0 there). kuka_abc_rotation is its inverse.
 Vec3 kuka_abc_deg(const Eigen::Matrix3d& r);
+Eigen::Matrix3d kuka_abc_rotation(const Vec3& abc_deg);
 
 // The nozzle (external TCP) frame in the base frame: z along the flow, x = nozzle axis x
 // cylinder axis, so the LIN angles stay clear of B = +-90 deg (A follows the turn).

@@ -26,21 +26,41 @@ const std::vector<Field>& schema() {
       {"name", T::String, true},
       {"description", T::String, true},
       {"sources", T::FreeObject},
-      {"kinematics", T::Object, true, {}, {}, {},
+      {"kinematics",
+       T::Object,
+       true,
+       {},
+       {},
+       {},
        {
-           {"type", T::String, true, {}, {}, {"delta", "cartesian", "robot-holds-substrate", "rotary"}},
+           {"type",
+            T::String,
+            true,
+            {},
+            {},
+            {"delta", "cartesian", "robot-holds-substrate", "rotary"}},
            {"radius_mm", T::Number, false, 1.0, 10000.0},
            {"height_mm", T::Number, false, 1.0, 10000.0},
            {"min_mm", T::Vec3},
            {"max_mm", T::Vec3},
            {"part_center_mm", T::Vec2},
        }},
-      {"firmware", T::Object, true, {}, {}, {},
+      {"firmware",
+       T::Object,
+       true,
+       {},
+       {},
+       {},
        {
            {"flavour", T::String, true, {}, {}, {"marlin", "reprap", "klipper", "grbl"}},
            {"arcs", T::Bool, true},
        }},
-      {"deposition", T::Object, true, {}, {}, {},
+      {"deposition",
+       T::Object,
+       true,
+       {},
+       {},
+       {},
        {
            {"model", T::String, true, {}, {}, {"manual-valve", "valve", "e-volumetric", "none"}},
            {"lead_s", T::Number, false, 0.0, 600.0},
@@ -56,7 +76,12 @@ const std::vector<Field>& schema() {
            {"reservoir_ml", T::Number, false, 0.1, 100000.0},
            {"extrude_max_length", T::Number, false, 1.0, 1e6},
        }},
-      {"limits", T::Object, false, {}, {}, {},
+      {"limits",
+       T::Object,
+       false,
+       {},
+       {},
+       {},
        {
            {"max_feed_mm_per_min", T::Number, false, 1.0, 1e6},
            {"travel_feed_mm_per_min", T::Number, false, 1.0, 1e6},
@@ -65,7 +90,12 @@ const std::vector<Field>& schema() {
            {"junction_deviation_mm", T::Number, false, 0.0, 10.0},
            {"max_volumetric_flow_mm3_per_s", T::Number, false, 0.0, 1e5},
        }},
-      {"speed_factors", T::Object, false, {}, {}, {},
+      {"speed_factors",
+       T::Object,
+       false,
+       {},
+       {},
+       {},
        {
            {"infill", T::Number, false, 0.05, 10.0},
            {"wall", T::Number, false, 0.05, 10.0},
@@ -81,7 +111,12 @@ const std::vector<Field>& schema() {
       {"start_gcode", T::StringList},
       {"end_gcode", T::StringList},
       // --- curved substrates (issue 11): robot cell, its extruder, rotary axis ---
-      {"robot", T::Object, false, {}, {}, {},
+      {"robot",
+       T::Object,
+       false,
+       {},
+       {},
+       {},
        {
            {"arm", T::String, true, {}, {}, {"lbr-iiwa-14-r820"}},
            {"v_cart_mm_per_s", T::Number, false, 0.1, 1000.0},
@@ -95,21 +130,52 @@ const std::vector<Field>& schema() {
            {"substrate_axis", T::Vec3, true},
            {"mount_mm", T::Number, false, 0.0, 2000.0},
            {"mount_rotation_deg", T::Number, false, -360.0, 360.0},
-           {"sunrise", T::Object, false, {}, {}, {},
+           {"sunrise",
+            T::Object,
+            false,
+            {},
+            {},
+            {},
             {
                 {"io_group", T::String},
                 {"lap_signal", T::String},
+                {"ready_signal", T::String},
                 {"csv_dir", T::String},
             }},
-           {"krl", T::Object, false, {}, {}, {},
+           {"krl",
+            T::Object,
+            false,
+            {},
+            {},
+            {},
             {
                 {"tool_index", T::Number, false, 1.0, 16.0},
                 {"base_index", T::Number, false, 1.0, 32.0},
                 {"lap_output", T::Number, false, 1.0, 4096.0},
                 {"points_per_module", T::Number, false, 10.0, 100000.0},
+                {"ready_input", T::Number, false, 0.0, 4096.0},
+            }},
+           {"approach_mm", T::Number, false, 0.0, 500.0},
+           {"retract_mm", T::Number, false, 0.0, 500.0},
+           {"home_joints_deg", T::NumberList},
+           {"ptp_velocity_percent", T::Number, false, 1.0, 100.0},
+           {"load",
+            T::Object,
+            false,
+            {},
+            {},
+            {},
+            {
+                {"mass_kg", T::Number, false, 0.0, 100.0},
+                {"cog_mm", T::Vec3},
             }},
        }},
-      {"extruder", T::Object, false, {}, {}, {},
+      {"extruder",
+       T::Object,
+       false,
+       {},
+       {},
+       {},
        {
            {"park_mm", T::Vec3, true},
            {"park_feed_mm_per_min", T::Number, false, 1.0, 1e6},
@@ -117,8 +183,14 @@ const std::vector<Field>& schema() {
            {"e_per_mm", T::String, false, {}, {}, {"time-based", "volumetric"}},
            {"handshake_pin", T::Number, false, -1.0, 1000.0},
            {"handshake_state", T::Number, false, 0.0, 1.0},
+           {"ready_pin", T::Number, false, -1.0, 1000.0},
        }},
-      {"rotary", T::Object, false, {}, {}, {},
+      {"rotary",
+       T::Object,
+       false,
+       {},
+       {},
+       {},
        {
            {"axis", T::String, true, {}, {}, {"A", "B"}},
            {"axis_dir", T::Vec3, true},
@@ -128,7 +200,12 @@ const std::vector<Field>& schema() {
            {"feed", T::String, false, {}, {}, {"xyz-distance", "inverse-time"}},
        }},
       // --- plotting (issue 5): plotter kinematics and pen handling ---
-      {"plotter", T::Object, false, {}, {}, {},
+      {"plotter",
+       T::Object,
+       false,
+       {},
+       {},
+       {},
        {
            {"kinematics", T::String, true, {}, {}, {"xy", "polargraph", "polar-rtheta"}},
            {"motor_distance_mm", T::Number, false, 10.0, 100000.0},
@@ -143,7 +220,12 @@ const std::vector<Field>& schema() {
            {"origin_radius_mm", T::Number, false, 1.0, 100000.0},
            {"steps_per_mm", T::Vec2, false, 1e-6, 1e9},
        }},
-      {"pen", T::Object, false, {}, {}, {},
+      {"pen",
+       T::Object,
+       false,
+       {},
+       {},
+       {},
        {
            {"lift", T::String, true, {}, {}, {"servo", "z", "drum"}},
            {"count", T::Number, false, 1.0, 64.0},
@@ -158,13 +240,23 @@ const std::vector<Field>& schema() {
            {"z_up_mm", T::Number, false, -1000.0, 1000.0},
            {"z_down_mm", T::Number, false, -1000.0, 1000.0},
            {"draw_feed_mm_per_min", T::Number, false, 1.0, 1e6},
-           {"drum", T::Object, false, {}, {}, {},
+           {"drum",
+            T::Object,
+            false,
+            {},
+            {},
+            {},
             {
                 {"engage_step_deg", T::Number, false, 1.0, 90.0},
                 {"rest_offset_deg", T::Number, false, 0.0, 90.0},
                 {"write_offset_deg", T::Number, false, 0.0, 90.0},
             }},
-           {"erase", T::Object, false, {}, {}, {},
+           {"erase",
+            T::Object,
+            false,
+            {},
+            {},
+            {},
             {
                 {"disc_diameter_mm", T::Number, false, 1.0, 1000.0},
                 {"offset_mm", T::Vec2},
@@ -179,15 +271,23 @@ const std::vector<Field>& schema() {
 
 const char* type_rule(T t) {
   switch (t) {
-    case T::Number: return "must be a number";
-    case T::Bool: return "must be true or false";
-    case T::String: return "must be a string";
-    case T::StringList: return "must be a list of strings";
-    case T::NumberList: return "must be a list of numbers";
-    case T::Vec2: return "must be [x, y] in mm";
-    case T::Vec3: return "must be [x, y, z] in mm";
+    case T::Number:
+      return "must be a number";
+    case T::Bool:
+      return "must be true or false";
+    case T::String:
+      return "must be a string";
+    case T::StringList:
+      return "must be a list of strings";
+    case T::NumberList:
+      return "must be a list of numbers";
+    case T::Vec2:
+      return "must be [x, y] in mm";
+    case T::Vec3:
+      return "must be [x, y, z] in mm";
     case T::Object:
-    case T::FreeObject: return "must be an object";
+    case T::FreeObject:
+      return "must be an object";
   }
   return "";
 }
@@ -202,20 +302,27 @@ bool numbers(const nlohmann::json& v, std::size_t n) {
 
 bool type_ok(T t, const nlohmann::json& v) {
   switch (t) {
-    case T::Number: return v.is_number();
-    case T::Bool: return v.is_boolean();
-    case T::String: return v.is_string();
+    case T::Number:
+      return v.is_number();
+    case T::Bool:
+      return v.is_boolean();
+    case T::String:
+      return v.is_string();
     case T::StringList:
       if (!v.is_array()) return false;
       for (const auto& e : v) {
         if (!e.is_string()) return false;
       }
       return true;
-    case T::NumberList: return numbers(v, v.is_array() ? v.size() : 0) && !v.empty();
-    case T::Vec2: return numbers(v, 2);
-    case T::Vec3: return numbers(v, 3);
+    case T::NumberList:
+      return numbers(v, v.is_array() ? v.size() : 0) && !v.empty();
+    case T::Vec2:
+      return numbers(v, 2);
+    case T::Vec3:
+      return numbers(v, 3);
     case T::Object:
-    case T::FreeObject: return v.is_object();
+    case T::FreeObject:
+      return v.is_object();
   }
   return false;
 }

@@ -43,7 +43,7 @@ class Writer {
 
  private:
   void header() {
-    for (const auto& h : info_.header) out_ += (h.empty() ? ";" : "; " + h) + "\n";
+    for (const auto& h : info_.header) out_ += (h.empty() ? ";" : "; " + comment_text(h)) + "\n";
     const RotaryAxis& r = m_.rotary;
     out_ += ";ROTARY_AXIS:" + letter_ + "\n;ROTARY_AXIS_DIR:" + vec_text(r.axis_dir) + "\n";
     out_ += ";ROTARY_AXIS_POINT:" + vec_text(r.axis_point_mm) + "\n";

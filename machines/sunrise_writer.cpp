@@ -6,6 +6,11 @@
 
 #include "machines/extruder_gcode.h"
 #include "machines/gcode_format.h"
+#include "machines/joint_analysis.h"
+#include "machines/program_text.h"
+#include "machines/workpiece_pose.h"
+#include "slicer/input_error.h"
+#include "slicer/units.h"
 
 namespace strand::machines {
 
@@ -26,6 +31,8 @@ const char* const kBody = R"java(
     // The cylinder on the flange: its frame sits MOUNT_MM along the flange z axis, turned
     // MOUNT_ROTATION_DEG about it; one moved frame per layer on that layer's contact radius.
     cylinder = new Tool("StrandCylinder");
+    cylinder.getLoadData().setMass(LOAD_MASS_KG);
+    cylinder.getLoadData().setCenterOfMass(LOAD_COG_MM[0], LOAD_COG_MM[1], LOAD_COG_MM[2]);
     double rot = Math.toRadians(MOUNT_ROTATION_DEG);
     for (int k = 0; k < CONTACT_RADIUS_MM.length; ++k) {
       double r = CONTACT_RADIUS_MM[k];
@@ -38,28 +45,47 @@ const char* const kBody = R"java(
   @Override
   public void run() {
     List<double[]> rows = readCsv(CSV_DIR + "/" + CSV_NAME);
+    if (rows.isEmpty()) throw new IllegalStateException("no poses in " + CSV_NAME);
     int lap = -1;
     List<LIN> motions = new ArrayList<LIN>();
     ObjectFrame moved = null;
+    if (HOME_JOINTS_RAD.length == 7) {
+      robot.move(ptp(new JointPosition(HOME_JOINTS_RAD)).setJointVelocityRel(PTP_VELOCITY_REL));
+    }
     for (int i = 0; i < rows.size(); ++i) {
       double[] r = rows.get(i);
       int rowLap = (int) r[LAP];
-      if (i == 0) {  // approach the first pose, backed off the nozzle, slowly in joint space
+      if (i == 0) {
+        // By axis values to APPROACH_MM away from the first pose along the nozzle axis, then
+        // straight onto it.
         moved = contactFrames.get((int) r[LAYER]);
-        moved.move(ptp(target(r)).setJointVelocityRel(0.1));
+        robot.move(ptp(new JointPosition(START_JOINTS_RAD)).setJointVelocityRel(PTP_VELOCITY_REL));
+        moved.move(lin(target(r, 0.0)).setCartVelocity(TRAVEL_MM_S));
         continue;
       }
       if (rowLap != lap) {
         flush(moved, motions, true);  // the lap ends at rest: the extruder waits on the signal
         lap = rowLap;
         moved = contactFrames.get((int) r[LAYER]);
-        extruder.set__LAP_SIGNAL__(((FIRST_LEVEL + lap) % 2) == 1);  // the extruder's M226 waits for this level
+        boolean level = ((FIRST_LEVEL + lap) % 2) == 1;
+        waitForExtruder(lap, level);
+        extruder.set__LAP_SIGNAL__(level);  // the extruder's M226 waits for this level
       }
-      motions.add(lin(target(r)).setCartVelocity(r[SPEED]).setBlendingCart(BLEND_MM));
+      motions.add(lin(target(r, 0.0)).setCartVelocity(r[SPEED]).setBlendingCart(BLEND_MM));
       if (motions.size() >= BATCH) flush(moved, motions, false);
     }
     flush(moved, motions, true);
+    // Straight away from the nozzle, then home.
+    moved.move(lin(target(rows.get(rows.size() - 1), RETRACT_MM)).setCartVelocity(TRAVEL_MM_S));
+    if (HOME_JOINTS_RAD.length == 7) {
+      robot.move(ptp(new JointPosition(HOME_JOINTS_RAD)).setJointVelocityRel(PTP_VELOCITY_REL));
+    }
   }
+
+  // Two-way handshake: before a lap the extruder says it is parked and ready with the lap's
+  // level (levels alternate, so a level left from an earlier lap is never taken for this one).
+  private void waitForExtruder(int lap, boolean level) {
+__WAIT_FOR_EXTRUDER__  }
 
   // Queues the motions; within a lap asynchronously (blended into the next batch), at its end
   // blocking, so the lap signal follows the motion.
@@ -75,19 +101,32 @@ const char* const kBody = R"java(
   }
 
   // The moved frame's target in the world: the workpiece pose of the row, then the contact
-  // radius along the workpiece x axis (the u = 0 line).
-  private Frame target(double[] r) {
+  // radius along the workpiece x axis (the u = 0 line); awayMm moves it along the nozzle
+  // axis (the flow), away from the nozzle tip.
+  private Frame target(double[] r, double awayMm) {
     double w = r[QW], x = r[QX], y = r[QY], z = r[QZ];
     double[][] m = {
         {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
         {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
         {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
     double radius = CONTACT_RADIUS_MM[(int) r[LAYER]];
-    double a = Math.atan2(m[1][0], m[0][0]);
-    double b = Math.atan2(-m[2][0], Math.hypot(m[2][1], m[2][2]));
-    double c = Math.atan2(m[2][1], m[2][2]);
-    return new Frame(World.Current.getRootFrame(), r[X] + radius * m[0][0], r[Y] + radius * m[1][0],
-        r[Z] + radius * m[2][0], a, b, c);
+    // A, B, C (Z, Y', X''): C is solved from A, so the angles give back m everywhere; at
+    // B = +-90 deg (gimbal lock) only A -+ C is defined and C = 0.
+    double cosB = Math.hypot(m[0][0], m[1][0]);
+    double b = Math.atan2(-m[2][0], cosB);
+    double a, c;
+    if (cosB < 1e-9) {
+      a = Math.atan2(-m[0][1], m[1][1]);
+      c = 0.0;
+    } else {
+      a = Math.atan2(m[1][0], m[0][0]);
+      double sa = Math.sin(a), ca = Math.cos(a);
+      c = Math.atan2(sa * m[0][2] - ca * m[1][2], ca * m[1][1] - sa * m[0][1]);
+    }
+    return new Frame(World.Current.getRootFrame(),
+        r[X] + radius * m[0][0] + awayMm * NOZZLE_AXIS[0],
+        r[Y] + radius * m[1][0] + awayMm * NOZZLE_AXIS[1],
+        r[Z] + radius * m[2][0] + awayMm * NOZZLE_AXIS[2], a, b, c);
   }
 
   private static List<double[]> readCsv(String path) {
@@ -119,6 +158,10 @@ const char* const kBody = R"java(
 }
 )java";
 
+constexpr std::size_t kMaxClassName = 64;
+// How long the robot waits for the extruder's ready level before a lap, ms.
+constexpr long kReadyTimeoutMs = 600000;
+
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
   for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) {
     s.replace(at, from.size(), to);
@@ -147,6 +190,35 @@ std::string java_class_name(const std::string& base) {
     }
   }
   if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out = "Strand" + out;
+  out = out.substr(0, kMaxClassName);
+  // A name the program already uses for an imported class or its own I/O group would not
+  // compile (or would shadow it).
+  static const char* const kTaken[] = {"BufferedReader",
+                                       "FileReader",
+                                       "IOException",
+                                       "ArrayList",
+                                       "List",
+                                       "Inject",
+                                       "LBR",
+                                       "JointPosition",
+                                       "Frame",
+                                       "ObjectFrame",
+                                       "Tool",
+                                       "World",
+                                       "Transformation",
+                                       "LIN",
+                                       "MotionBatch",
+                                       "RoboticsAPIApplication",
+                                       "Math",
+                                       "String",
+                                       "Object",
+                                       "Override",
+                                       "IllegalStateException",
+                                       "System",
+                                       "Double",
+                                       "Integer"};
+  for (const char* taken : kTaken)
+    if (out == taken) return out + "Application";
   return out;
 }
 
@@ -154,11 +226,18 @@ std::string write_sunrise_java(const slicer::PoseProgram& p, const MachineProfil
                                const std::string& base, const std::string& csv_name,
                                const std::vector<std::string>& header) {
   const RobotCell& c = m.robot;
+  // Checked when the profile is read; again here, as these two are pasted into code.
+  require_java_identifier("robot.sunrise.io_group", c.programs.sunrise_io_group);
+  require_java_identifier("robot.sunrise.lap_signal", c.programs.sunrise_lap_signal);
+  if (!c.programs.sunrise_ready_signal.empty())
+    require_java_identifier("robot.sunrise.ready_signal", c.programs.sunrise_ready_signal);
   const std::string cls = java_class_name(base);
+  if (c.programs.sunrise_io_group + "IOGroup" == cls) {
+    throw InputError("output = " + base + ": its class name " + cls +
+                     " is the I/O group's class (robot.sunrise.io_group): choose another name");
+  }
   std::string out = "package application;\n\n";
-  for (const auto& h : header) out += "// " + h + "\n";
-  if (cls != base)
-    out += "// Java wants the file named after its public class: save it as " + cls + ".java.\n";
+  for (const auto& h : header) out += "// " + java_comment_text(h) + "\n";
   out += R"(
 import static com.kuka.roboticsAPI.motionModel.BasicMotions.lin;
 import static com.kuka.roboticsAPI.motionModel.BasicMotions.ptp;
@@ -173,6 +252,7 @@ import javax.inject.Inject;
 
 import com.kuka.generated.ioAccess.__IO_GROUP__IOGroup;
 import com.kuka.roboticsAPI.applicationModel.RoboticsAPIApplication;
+import com.kuka.roboticsAPI.deviceModel.JointPosition;
 import com.kuka.roboticsAPI.deviceModel.LBR;
 import com.kuka.roboticsAPI.geometricModel.Frame;
 import com.kuka.roboticsAPI.geometricModel.ObjectFrame;
@@ -184,8 +264,39 @@ import com.kuka.roboticsAPI.motionModel.MotionBatch;
 
 )";
   out += "public class " + cls + " extends RoboticsAPIApplication {\n";
-  out += "  private static final String CSV_DIR = \"" + c.programs.sunrise_csv_dir + "\";\n";
-  out += "  private static final String CSV_NAME = \"" + csv_name + "\";\n";
+  out += "  private static final String CSV_DIR = " +
+         java_string_literal(c.programs.sunrise_csv_dir, "robot.sunrise.csv_dir") + ";\n";
+  out +=
+      "  private static final String CSV_NAME = " + java_string_literal(csv_name, "output") + ";\n";
+  const RobotMotionSetup& mo = c.motion;
+  const Joints q0 = start_joints(c, moved_along_nozzle(c, p.points.front(), c.motion.approach_mm));
+  const auto numbers = [](const auto& values, int n, int digits) {
+    std::string t;
+    for (int i = 0; i < n; ++i) t += (i ? ", " : "") + fmt_fixed(values[i], digits);
+    return t;
+  };
+  out +=
+      "  // APPROACH_MM from the first pose along the nozzle axis, by axis values (A1..A7, rad)\n";
+  out += "  // from the cell's inverse kinematics: no redundancy is left to the controller.\n";
+  out += "  private static final double[] START_JOINTS_RAD = {" + numbers(q0, 7, 6) + "};\n";
+  out += "  private static final double APPROACH_MM = " + fmt_fixed(mo.approach_mm, 3) + ";\n";
+  out += "  private static final double RETRACT_MM = " + fmt_fixed(mo.retract_mm, 3) + ";\n";
+  out += "  private static final double[] NOZZLE_AXIS = {" + numbers(c.nozzle_axis, 3, 9) +
+         "};  // flow direction\n";
+  std::array<double, 7> home_rad{};
+  if (mo.home_joints_deg)
+    for (std::size_t i = 0; i < 7; ++i) home_rad[i] = slicer::deg_to_rad((*mo.home_joints_deg)[i]);
+  out += "  private static final double[] HOME_JOINTS_RAD = {" +
+         (mo.home_joints_deg ? numbers(home_rad, 7, 6) : std::string()) + "};  // none: {}\n";
+  out += "  private static final double PTP_VELOCITY_REL = " +
+         fmt_fixed(mo.ptp_velocity_percent / 100.0, 3) + ";\n";
+  out += "  private static final double TRAVEL_MM_S = " + fmt_fixed(c.travel_speed_mm_per_s, 3) +
+         ";\n";
+  out += "  private static final double LOAD_MASS_KG = " + fmt_fixed(mo.load_mass_kg, 3) +
+         ";  // the workpiece on the flange\n";
+  out += "  private static final double[] LOAD_COG_MM = {" + numbers(mo.load_cog_mm, 3, 3) + "};\n";
+  out +=
+      "  private static final long READY_TIMEOUT_MS = " + std::to_string(kReadyTimeoutMs) + ";\n";
   out += "  private static final double V_CART_MM_S = " + fmt_fixed(c.v_cart_mm_per_s, 3) +
          ";  // deposits (rows carry their speed)\n";
   out += "  private static final double BLEND_MM = 0.01;\n";
@@ -198,6 +309,25 @@ import com.kuka.roboticsAPI.motionModel.MotionBatch;
   out += "  // Contact radius per layer: cylinder radius + nozzle tip offset (k + 1) h, mm.\n";
   out += "  private static final double[] CONTACT_RADIUS_MM = {" + radii(p, m) + "};\n";
   out += kBody;
+  const std::string& ready = c.programs.sunrise_ready_signal;
+  out = replace_all(
+      out, "__WAIT_FOR_EXTRUDER__",
+      ready.empty()
+          ? "    // No ready input in the profile (robot.sunrise.ready_signal): no wait.\n"
+          : "    long until = System.currentTimeMillis() + READY_TIMEOUT_MS;\n"
+            "    while (extruder.get" +
+                ready +
+                "() != level) {\n"
+                "      if (System.currentTimeMillis() > until) {\n"
+                "        throw new IllegalStateException(\"the extruder is not ready for lap \" + "
+                "lap);\n"
+                "      }\n"
+                "      try {\n"
+                "        Thread.sleep(10);\n"
+                "      } catch (InterruptedException e) {\n"
+                "        throw new IllegalStateException(e);\n"
+                "      }\n"
+                "    }\n");
   out = replace_all(out, "__IO_GROUP__", c.programs.sunrise_io_group);
   return replace_all(out, "__LAP_SIGNAL__", c.programs.sunrise_lap_signal);
 }

@@ -1,6 +1,9 @@
 // Whole-file reads, output transactions and the temp-file cleanup on signals.
 #include "slicer/file_io.h"
 
+#include <fcntl.h>
+#include <pthread.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -9,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <string_view>
 #include <system_error>
 
 #include "slicer/input_error.h"
@@ -18,6 +22,9 @@ namespace strand::slicer {
 namespace fs = std::filesystem;
 
 namespace {
+
+constexpr std::string_view kJournalHeader = "strand output set v1";
+constexpr std::size_t kMaxJournalBytes = std::size_t{1} << 20;
 
 // Temp files that exist right now, for the signal handler: fixed slots of heap-copied
 // paths, claimed and released with atomics (a handler may not lock). A temp that finds no
@@ -91,7 +98,112 @@ void write_temp(const std::string& target, const std::string& temp, const std::s
   close_temp(*out, target, temp);
 }
 
+// Blocks SIGINT, SIGTERM and SIGHUP in this thread for its lifetime (a pending one is
+// delivered when it ends).
+class SignalsHeld {
+ public:
+  SignalsHeld() {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    sigaddset(&set, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &set, &old_);
+  }
+  ~SignalsHeld() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+  SignalsHeld(const SignalsHeld&) = delete;
+  SignalsHeld& operator=(const SignalsHeld&) = delete;
+
+ private:
+  sigset_t old_;
+};
+
+std::string journal_path(const std::string& first_target) {
+  return first_target + ".strand-commit";
+}
+
+// The journal of one set's renames: "<temp>\t<target>" per line, absolute paths, written
+// whole under a temp name and renamed into place, locked (flock) while this process renames
+// so that another strand process never completes a set that is still being committed.
+class Journal {
+ public:
+  Journal(const std::string& first_target,
+          const std::vector<std::pair<std::string, std::string>>& renames)
+      : path_(journal_path(first_target)) {
+    std::string text = std::string(kJournalHeader) + "\n";
+    for (const auto& [temp, target] : renames)
+      text += fs::absolute(temp).string() + "\t" + fs::absolute(target).string() + "\n";
+    const std::string temp = path_ + ".strand-tmp";
+    fd_ = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw InputError("output = " + first_target + ": cannot write here");
+    ::flock(fd_, LOCK_EX);
+    bool ok = ::write(fd_, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+    ok = ok && ::fsync(fd_) == 0 && std::rename(temp.c_str(), path_.c_str()) == 0;
+    if (!ok) {
+      ::unlink(temp.c_str());
+      ::close(fd_);
+      throw InputError("output = " + first_target + ": cannot write here (disk full?)");
+    }
+  }
+  ~Journal() { abandon(); }
+  Journal(const Journal&) = delete;
+  Journal& operator=(const Journal&) = delete;
+
+  // Every rename done: the journal goes.
+  void finish() {
+    if (fd_ < 0) return;
+    ::unlink(path_.c_str());
+    ::close(fd_);
+    fd_ = -1;
+  }
+  // A rename failed: the set cannot be completed, the journal goes with its temps.
+  void abandon() { finish(); }
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+};
+
 }  // namespace
+
+bool recover_output_set(const std::string& first_target) {
+  const std::string path = journal_path(first_target);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {  // being committed by another process
+    ::close(fd);
+    return false;
+  }
+  std::string text;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) {
+    text.append(buffer, static_cast<std::size_t>(n));
+    if (text.size() > kMaxJournalBytes) break;
+  }
+  bool completed = false;
+  if (text.rfind(std::string(kJournalHeader) + "\n", 0) == 0 && text.size() <= kMaxJournalBytes) {
+    std::size_t at = text.find('\n') + 1;
+    while (at < text.size()) {
+      const std::size_t end = text.find('\n', at);
+      if (end == std::string::npos) break;
+      const std::string line = text.substr(at, end - at);
+      at = end + 1;
+      const std::size_t tab = line.find('\t');
+      if (tab == std::string::npos) continue;
+      const std::string temp = line.substr(0, tab), target = line.substr(tab + 1);
+      // Only Strand's own temps are moved: the name of each says what it becomes.
+      if (temp != target + ".strand-tmp") continue;
+      std::error_code ec;
+      if (fs::is_regular_file(fs::symlink_status(temp, ec))) {
+        fs::rename(temp, target, ec);
+        completed = completed || !ec;
+      }
+    }
+  }
+  ::unlink(path.c_str());
+  ::close(fd);
+  return completed;
+}
 
 OutputFiles::~OutputFiles() {
   if (committed_) return;
@@ -121,6 +233,7 @@ void OutputFiles::check_target(const std::string& path) const {
 
 void OutputFiles::stage(const std::string& path, const std::string& content) {
   check_target(path);
+  recover_output_set(path);
   Staged s{path, path + ".strand-tmp", nullptr};
   write_temp(s.target, s.temp, content);
   staged_.push_back(std::move(s));
@@ -128,6 +241,7 @@ void OutputFiles::stage(const std::string& path, const std::string& content) {
 
 std::ostream& OutputFiles::stage_stream(const std::string& path) {
   check_target(path);
+  recover_output_set(path);
   Staged s{path, path + ".strand-tmp", nullptr};
   s.stream = open_temp(s.target, s.temp);
   staged_.push_back(std::move(s));
@@ -146,17 +260,31 @@ void OutputFiles::commit() {
       throw;
     }
   }
+  // Several files: a journal naming every rename goes first, so a set interrupted by a kill
+  // is completed by the next run (recover_output_set); catchable signals wait until the
+  // renames are done, and the temps now belong to the journal, not to the signal cleanup.
+  SignalsHeld held;
+  std::unique_ptr<Journal> journal;
+  if (staged_.size() > 1) {
+    std::vector<std::pair<std::string, std::string>> renames;
+    for (const Staged& s : staged_) renames.emplace_back(s.temp, s.target);
+    journal = std::make_unique<Journal>(staged_.front().target, renames);
+    for (const Staged& s : staged_) forget_temp(s.temp);
+  }
   for (std::size_t i = 0; i < staged_.size(); ++i) {
+    if (rename_hook_) rename_hook_(i);
     std::error_code ec;
     fs::rename(staged_[i].temp, staged_[i].target, ec);
     if (ec) {
       // Earlier files are already in place; the rest are removed by the destructor.
+      if (journal) journal->abandon();
       staged_.erase(staged_.begin(), staged_.begin() + static_cast<std::ptrdiff_t>(i));
       throw InputError("output = " + staged_.front().target +
                        ": cannot rename the finished file into place");
     }
     forget_temp(staged_[i].temp);
   }
+  if (journal) journal->finish();
   committed_ = true;
 }
 
@@ -170,7 +298,15 @@ std::string read_file(const std::string& path) {
   std::error_code ec;
   const auto status = fs::status(path, ec);
   if (ec || !fs::exists(status)) throw InputError("input = " + path + ": no such file");
-  if (fs::is_directory(status)) throw InputError("input = " + path + ": is a directory, not a file");
+  if (fs::is_directory(status))
+    throw InputError("input = " + path + ": is a directory, not a file");
+  // A FIFO would block and a device (/dev/zero) never end: only regular files are read.
+  if (fs::is_fifo(status))
+    throw InputError("input = " + path + ": is a FIFO (named pipe), not a regular file");
+  if (fs::is_character_file(status) || fs::is_block_file(status))
+    throw InputError("input = " + path + ": is a device, not a regular file");
+  if (fs::is_socket(status))
+    throw InputError("input = " + path + ": is a socket, not a regular file");
   if (fs::is_regular_file(status)) {
     const auto size = fs::file_size(path, ec);
     if (!ec && size > kMaxInputBytes) {
@@ -197,6 +333,7 @@ std::string read_file(const std::string& path) {
 void install_signal_cleanup() {
   std::signal(SIGINT, remove_temps_and_die);
   std::signal(SIGTERM, remove_temps_and_die);
+  std::signal(SIGHUP, remove_temps_and_die);
 }
 
 }  // namespace strand::slicer

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -17,8 +18,12 @@ inline constexpr std::size_t kMaxInputBytes = std::size_t{256} << 20;
 // The outputs of one command as a transaction. stage() writes a temp file beside the target
 // ("<target>.strand-tmp", so a re-run replaces a killed run's leftover); commit() renames
 // every staged file into place; an uncommitted set removes its temps when destroyed, and
-// temps are removed on SIGINT/SIGTERM too (install_signal_cleanup). Throws InputError naming
-// the path when a target cannot be written, is staged twice, or is a protected input.
+// temps are removed on SIGINT/SIGTERM/SIGHUP too (install_signal_cleanup). A set of several
+// files is committed through a journal beside its first file, written before the first
+// rename and removed after the last, with those signals held meanwhile: a set killed between
+// two renames (SIGKILL, power loss) is completed by the next run that stages its first file,
+// so a set is never left half old and half new for Strand. Throws InputError naming the path
+// when a target cannot be written, is staged twice, or is a protected input.
 class OutputFiles {
  public:
   OutputFiles() = default;
@@ -35,6 +40,8 @@ class OutputFiles {
   // commit(), which flushes it and throws InputError if any write failed.
   std::ostream& stage_stream(const std::string& path);
   void commit();
+  // Test hook: called before each rename of commit() with the number done so far.
+  void on_rename(std::function<void(std::size_t)> hook) { rename_hook_ = std::move(hook); }
 
  private:
   struct Staged {
@@ -45,15 +52,22 @@ class OutputFiles {
   std::vector<Staged> staged_;
   std::vector<std::string> protected_;
   bool committed_ = false;
+  std::function<void(std::size_t)> rename_hook_;
 };
+
+// Completes the output set whose first file is `first_target` if a run was killed while
+// renaming it into place (its journal, "<first_target>.strand-commit", is still there): the
+// remaining finished temps are renamed and the journal removed, so the set is all new.
+// Returns whether anything was renamed. stage() calls it for every target.
+bool recover_output_set(const std::string& first_target);
 
 // One output file as a transaction of its own.
 void write_file_atomic(const std::string& path, const std::string& content);
 // Reads a whole regular file of at most kMaxInputBytes; throws InputError naming the path
 // if it is missing, a directory, unreadable or too large.
 std::string read_file(const std::string& path);
-// Removes the temp files of unfinished transactions when the process gets SIGINT or
-// SIGTERM, then dies of that signal. Call once from main().
+// Removes the temp files of unfinished transactions when the process gets SIGINT,
+// SIGTERM or SIGHUP, then dies of that signal. Call once from main().
 void install_signal_cleanup();
 
 }  // namespace strand::slicer

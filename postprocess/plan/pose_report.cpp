@@ -73,15 +73,18 @@ std::string laps_text(const nlohmann::json& r) {
   std::vector<std::string> counts;
   for (const auto& l : r.at("layers")) counts.push_back(std::to_string(l.at("laps").get<int>()));
   std::string per_layer = counts.empty() ? "0" : counts.front();
-  if (std::any_of(counts.begin(), counts.end(), [&](const std::string& c) { return c != counts.front(); })) {
+  if (std::any_of(counts.begin(), counts.end(),
+                  [&](const std::string& c) { return c != counts.front(); })) {
     per_layer.clear();
     for (const auto& c : counts) per_layer += (per_layer.empty() ? "" : "/") + c;
   }
   double widest = 0.0;
-  for (const auto& lap : r.at("laps")) widest = std::max(widest, lap.at("turn_range_deg").get<double>());
+  for (const auto& lap : r.at("laps"))
+    widest = std::max(widest, lap.at("turn_range_deg").get<double>());
   const auto& tot = r.at("totals");
-  return std::to_string(tot.at("laps").get<int>()) + " in " + std::to_string(tot.at("layers").get<int>()) +
-         " layers, " + per_layer + " per layer (forward and return alternate), turning at most " +
+  return std::to_string(tot.at("laps").get<int>()) + " in " +
+         std::to_string(tot.at("layers").get<int>()) + " layers, " + per_layer +
+         " per layer (forward and return alternate), turning at most " +
          machines::fmt_fixed(widest, 1) + " deg per lap";
 }
 
@@ -167,6 +170,8 @@ std::string pose_summary(const nlohmann::json& r) {
     o << "  programs       " << r.at("programs").at("text").get<std::string>() << "\n";
   if (r.contains("robot"))
     o << "  joints         " << r.at("robot").at("text").get<std::string>() << "\n";
+  if (r.contains("warnings"))
+    for (const auto& w : r.at("warnings")) o << "  warning        " << w.get<std::string>() << "\n";
   return o.str();
 }
 

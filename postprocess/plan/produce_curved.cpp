@@ -162,15 +162,29 @@ void check_rotary(const slicer::PoseProgram& p, const MachineProfile& m,
 }  // namespace
 
 std::vector<std::string> curved_output_paths(const MachineProfile& m, const std::string& output) {
-  if (!m.robot.enabled) return {output};
   const std::filesystem::path p(output);
+  if (!m.robot.enabled) {
+    const std::string ext = p.extension().string();
+    if (ext != ".gcode" && ext != ".gco" && ext != ".g" && ext != ".nc") {
+      throw InputError("output = " + output + ": " + m.name +
+                       " writes rotary-axis G-code: give a .gcode (or .gco, .g, .nc) name");
+    }
+    return {output};
+  }
   if (p.extension() != ".csv") {
     throw InputError(
         "output = " + output + ": " + m.name +
         " writes a pose CSV (and .java, .src, .dat, .extruder.gcode beside it): give a .csv name");
   }
+  // Sunrise and KSS load a program only from the file named after its class or module:
+  // those two are named after the sanitised stem, the CSV and the extruder's G-code keep it.
   const std::string base = output.substr(0, output.size() - 4);
-  return {output, base + ".java", base + ".src", base + ".dat", base + ".extruder.gcode"};
+  const std::string stem = p.stem().string();
+  const std::filesystem::path dir = p.parent_path();
+  const std::string module = machines::krl_module_name(stem);
+  return {output, (dir / (machines::java_class_name(stem) + ".java")).string(),
+          (dir / (module + ".src")).string(), (dir / (module + ".dat")).string(),
+          base + ".extruder.gcode"};
 }
 
 namespace {
@@ -197,6 +211,9 @@ std::vector<std::string> header_lines(const slicer::Toolpath& t, const slicer::S
   }
   return h;
 }
+
+// The extruder's volume may differ from the beads' by this fraction before a warning.
+constexpr double kVolumeBalanceTolerance = 0.10;
 
 // Robot cell: pose CSV, Sunrise Java, KRL .src/.dat and the extruder's G-code.
 void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachineProfile& m,
@@ -238,15 +255,27 @@ void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachinePr
                                          std::to_string(krl.lin_points) + " LIN, extruder " +
                                          std::to_string(lines(ext)) + " lines"}};
   const double ink_ml = slicer::mm3_to_ml(e_total * m.deposition.mm3_per_e);
+  const double bead_ml = out.report["totals"]["bead_volume_ml"].get<double>();
+  const double ratio = bead_ml > 0.0 ? ink_ml / bead_ml : 1.0;
   out.report["ink"] = {
       {"e_total", std::round(e_total * 1e5) / 1e5},
       {"extruded_ml", std::round(ink_ml * 1e4) / 1e4},
       {"e_per_mm",
        m.robot.extruder.time_based ? "v_ext / v_cart (time-based)" : "bead area / mm3 per E"},
       {"text", "E " + machines::fmt_fixed(e_total, 2) + " (" + machines::fmt_fixed(ink_ml, 2) +
-                   " mL from the extruder, beads " +
-                   machines::fmt_fixed(out.report["totals"]["bead_volume_ml"].get<double>(), 2) +
-                   " mL)"}};
+                   " mL from the extruder, beads " + machines::fmt_fixed(bead_ml, 2) + " mL)"},
+      {"extruder_to_bead_ratio", std::round(ratio * 1e4) / 1e4}};
+  // The extruder and the beads disagree past 10 %: the part will be starved or flooded.
+  if (std::abs(ratio - 1.0) > kVolumeBalanceTolerance) {
+    std::string fix = m.robot.extruder.time_based
+                          ? "set extruder.v_ext_mm_per_min to " +
+                                machines::fmt_fixed(m.robot.extruder.v_ext_mm_per_min / ratio, 1) +
+                                " or calibrate deposition.mm3_per_e"
+                          : "calibrate deposition.mm3_per_e";
+    out.report["warnings"].push_back("the extruder delivers " + machines::fmt_fixed(ratio, 2) +
+                                     "x the beads' volume (" + machines::fmt_fixed(ink_ml, 2) +
+                                     " vs " + machines::fmt_fixed(bead_ml, 2) + " mL): " + fix);
+  }
 }
 
 void write_rotary(CurvedProduced& out, const slicer::Toolpath& t, const MachineProfile& m,

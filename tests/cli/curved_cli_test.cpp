@@ -40,7 +40,7 @@ TEST(CurvedCli, ThesisJobWritesTheRobotProgramsAndChecksClean) {
       "job '" + samples_dir() + "/missing-rib-cylinder.json' -o part.csv --report part.json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* f :
-       {"part.csv", "part.java", "part.src", "part.dat", "part.extruder.gcode", "part.json"}) {
+       {"part.csv", "Part.java", "part.src", "part.dat", "part.extruder.gcode", "part.json"}) {
     EXPECT_TRUE(exists(dir + "/" + f)) << f;
   }
   EXPECT_NE(r.out.find("laps           6 in 3 layers"), std::string::npos) << r.out;

@@ -1,10 +1,17 @@
 // Output transactions: all files or none, no temp left behind, inputs protected; bounded reads.
 #include "slicer/file_io.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "slicer/input_error.h"
 #include "tests/support/cli_runner.h"
@@ -15,7 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 
 std::size_t entries(const std::string& dir) {
-  return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+  return static_cast<std::size_t>(
+      std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
 }
 
 TEST(OutputFiles, NothingIsInPlaceUntilCommit) {
@@ -62,7 +70,6 @@ TEST(ReadFile, DirectoriesAndMissingFilesAreNamed) {
   EXPECT_EQ(read_file(dir + "/x"), "abc");
 }
 
-
 TEST(OutputFiles, StreamedFileAppearsWholeAtCommit) {
   const auto dir = testing::fresh_dir("io-stream");
   OutputFiles out;
@@ -84,6 +91,137 @@ TEST(OutputFiles, UncommittedStreamLeavesNothing) {
     out.stage_stream(dir + "/big.txt") << "partial";
   }
   EXPECT_EQ(entries(dir), 0u);
+}
+
+}  // namespace
+}  // namespace strand::slicer
+
+namespace strand::slicer {
+namespace {
+
+// The set of five files a robot job writes, with contents tagged by run.
+const std::vector<std::string> kSet = {"p.csv", "P.java", "p.src", "p.dat", "p.extruder.gcode"};
+
+void write_set(const std::string& dir, const std::string& tag,
+               std::function<void(std::size_t)> hook = nullptr) {
+  OutputFiles out;
+  for (const auto& name : kSet) out.stage(dir + "/" + name, tag + " " + name);
+  if (hook) out.on_rename(std::move(hook));
+  out.commit();
+}
+
+// "old", "new" or "mixed" for the set in `dir`.
+std::string set_state(const std::string& dir) {
+  std::size_t old_files = 0, new_files = 0;
+  for (const auto& name : kSet) {
+    const std::string text = testing::slurp(dir + "/" + name);
+    old_files += text == "old " + name;
+    new_files += text == "new " + name;
+  }
+  if (old_files == kSet.size()) return "old";
+  if (new_files == kSet.size()) return "new";
+  return "mixed";
+}
+
+TEST(OutputSet, AKillBetweenAnyTwoRenamesIsCompletedByTheNextRun) {
+  for (std::size_t kill_after = 0; kill_after < kSet.size(); ++kill_after) {
+    const auto dir = testing::fresh_dir("io-kill");
+    write_set(dir, "old");
+    // A child process commits the new set and is killed (SIGKILL: no handler runs) after
+    // `kill_after` renames.
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      write_set(dir, "new", [&](std::size_t done) {
+        if (done == kill_after) raise(SIGKILL);
+      });
+      _exit(0);
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status));
+    EXPECT_EQ(set_state(dir), kill_after == 0 ? "old" : "mixed") << "before recovery";
+    EXPECT_TRUE(fs::exists(dir + "/p.csv.strand-commit")) << "the journal says what is left";
+    // What any later run does first when it stages the set's first file.
+    EXPECT_TRUE(recover_output_set(dir + "/p.csv"));
+    EXPECT_EQ(set_state(dir), "new") << "killed after " << kill_after << " renames";
+    EXPECT_FALSE(fs::exists(dir + "/p.csv.strand-commit"));
+    for (const auto& name : kSet)
+      EXPECT_FALSE(fs::exists(dir + "/" + name + ".strand-tmp")) << name;
+  }
+}
+
+TEST(OutputSet, TheNextRunStagingTheSetCompletesItBeforeWritingItsOwn) {
+  const auto dir = testing::fresh_dir("io-next");
+  write_set(dir, "old");
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    write_set(dir, "new", [](std::size_t done) {
+      if (done == 2) raise(SIGKILL);
+    });
+    _exit(0);
+  }
+  int status = 0;
+  waitpid(child, &status, 0);
+  ASSERT_EQ(set_state(dir), "mixed");
+  // A third run that is itself interrupted before committing: the set it finds is completed,
+  // and its own unfinished temps are removed.
+  {
+    OutputFiles out;
+    out.stage(dir + "/p.csv", "third p.csv");
+    EXPECT_EQ(set_state(dir), "new");
+  }
+  EXPECT_EQ(set_state(dir), "new");
+  EXPECT_EQ(entries(dir), kSet.size()) << "no journal or temp left";
+}
+
+TEST(OutputSet, AJournalOfAnotherLiveCommitIsLeftAlone) {
+  const auto dir = testing::fresh_dir("io-live");
+  write_set(dir, "old");
+  // Another process is committing (it holds the journal's lock): recovery must not touch it.
+  std::ofstream(dir + "/p.csv.strand-tmp") << "new p.csv";
+  std::ofstream(dir + "/p.csv.strand-commit")
+      << "strand output set v1\n"
+      << fs::absolute(dir + "/p.csv.strand-tmp").string() << "\t"
+      << fs::absolute(dir + "/p.csv").string() << "\n";
+  const int fd = ::open((dir + "/p.csv.strand-commit").c_str(), O_RDONLY);
+  ASSERT_EQ(::flock(fd, LOCK_EX), 0);
+  const pid_t child = fork();
+  if (child == 0) _exit(recover_output_set(dir + "/p.csv") ? 1 : 0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(testing::slurp(dir + "/p.csv"), "old p.csv");
+  ::close(fd);
+  EXPECT_TRUE(recover_output_set(dir + "/p.csv")) << "once the lock is gone it is completed";
+  EXPECT_EQ(testing::slurp(dir + "/p.csv"), "new p.csv");
+}
+
+TEST(OutputSet, AJournalCannotMoveFilesThatAreNotItsOwnTemps) {
+  const auto dir = testing::fresh_dir("io-evil");
+  std::ofstream(dir + "/secret") << "s";
+  std::ofstream(dir + "/p.csv.strand-commit") << "strand output set v1\n"
+                                              << fs::absolute(dir + "/secret").string() << "\t"
+                                              << fs::absolute(dir + "/p.csv").string() << "\n";
+  EXPECT_FALSE(recover_output_set(dir + "/p.csv"));
+  EXPECT_EQ(testing::slurp(dir + "/secret"), "s");
+  EXPECT_FALSE(fs::exists(dir + "/p.csv"));
+  EXPECT_FALSE(fs::exists(dir + "/p.csv.strand-commit"));
+}
+
+TEST(ReadFile, FifosAndDevicesAreRefusedWithoutBlocking) {
+  const auto dir = testing::fresh_dir("io-fifo");
+  ASSERT_EQ(mkfifo((dir + "/pipe").c_str(), 0600), 0);
+  for (const std::string& path :
+       {dir + "/pipe", std::string("/dev/zero"), std::string("/dev/null")}) {
+    try {
+      read_file(path);
+      ADD_FAILURE() << path << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

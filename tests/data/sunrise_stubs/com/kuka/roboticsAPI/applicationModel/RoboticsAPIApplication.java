@@ -1,0 +1,7 @@
+package com.kuka.roboticsAPI.applicationModel;
+
+public abstract class RoboticsAPIApplication {
+  public void initialize() {}
+
+  public abstract void run() throws Exception;
+}

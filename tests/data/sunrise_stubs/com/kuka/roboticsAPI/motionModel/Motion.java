@@ -1,0 +1,5 @@
+package com.kuka.roboticsAPI.motionModel;
+
+public abstract class Motion {
+  public abstract void execute(String moved);
+}
