@@ -122,7 +122,6 @@ int finish(const SendArgs& a, const machines::StreamResult& r, const machines::S
       const auto safe =
           m ? machines::safe_state_gcode(*m, machines::modal_state_before(all, r.resume_line, *m))
             : std::vector<std::string>{};
-      run_extra(port, fw, safe, o);
       // the firmware may be silent: plain lines, each with a bounded wait, none held back
       const std::size_t confirmed = machines::send_unnumbered(port, fw, safe, o.silence_ms);
       std::cout << "  paused         before line " << r.resume_line
