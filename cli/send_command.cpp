@@ -168,8 +168,7 @@ int run_send(const SendArgs& a) {
   if (!std::isfinite(a.timeout_s) || a.timeout_s < 0.05 || a.timeout_s > 600.0) {
     std::ostringstream shown;
     shown << a.timeout_s;
-    throw InputError("send.timeout = " + shown.str() +
-                     ": must be a number of seconds in [0.05, 600]");
+    throw InputError("--timeout = " + shown.str() + ": must be a number of seconds in [0.05, 600]");
   }
   const std::string text = slicer::read_file(a.file);
   const std::vector<machines::Command> all = machines::commands_of(text, a.file);
