@@ -32,7 +32,9 @@ std::string strip_comments(std::string_view line) {
 bool starts_with_ci(std::string_view s, std::string_view prefix) {
   if (s.size() < prefix.size()) return false;
   for (std::size_t i = 0; i < prefix.size(); ++i) {
-    if (std::tolower(static_cast<unsigned char>(s[i])) != std::tolower(static_cast<unsigned char>(prefix[i]))) return false;
+    if (std::tolower(static_cast<unsigned char>(s[i])) !=
+        std::tolower(static_cast<unsigned char>(prefix[i])))
+      return false;
   }
   return true;
 }
@@ -50,41 +52,122 @@ bool looks_like_gcode(std::string_view c) {
   if (c[0] == '$' || c[0] == '%') return true;
   if (!std::isalpha(static_cast<unsigned char>(c[0]))) return false;
   const std::string_view rest = trim(c.substr(1));
-  return !rest.empty() && (std::isdigit(static_cast<unsigned char>(rest[0])) || rest[0] == '-' || rest[0] == '.');
+  return !rest.empty() &&
+         (std::isdigit(static_cast<unsigned char>(rest[0])) || rest[0] == '-' || rest[0] == '.');
 }
 
 long number_after(std::string_view s) {
   std::size_t i = 0;
   while (i < s.size() && !std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
   long n = 0;
-  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) n = n * 10 + (s[i++] - '0');
+  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
+    n = n * 10 + (s[i++] - '0');
   return n;
+}
+
+// The next line of `rest` without its end, which is LF, CRLF or a lone CR; `rest` moves past it.
+std::string_view next_line(std::string_view& rest) {
+  const auto end = rest.find_first_of("\r\n");
+  const std::string_view line = rest.substr(0, end);
+  if (end == std::string_view::npos) {
+    rest = {};
+  } else {
+    rest.remove_prefix(
+        end + (rest[end] == '\r' && end + 1 < rest.size() && rest[end + 1] == '\n' ? 2 : 1));
+  }
+  return line;
+}
+
+// A file's own serial framing, "N12 G1 X5*57" -> "G1 X5": the line number word in front and
+// the checksum at the end (only after a line number, as the protocol frames them).
+std::string_view without_framing(std::string_view c) {
+  if (c.size() < 2 || (c[0] != 'N' && c[0] != 'n') ||
+      !std::isdigit(static_cast<unsigned char>(c[1])))
+    return c;
+  std::size_t i = 1;
+  while (i < c.size() && std::isdigit(static_cast<unsigned char>(c[i]))) ++i;
+  c = trim(c.substr(i));
+  const auto star = c.rfind('*');
+  if (star != std::string_view::npos && star + 1 < c.size() &&
+      std::all_of(c.begin() + static_cast<long>(star) + 1, c.end(),
+                  [](char ch) { return std::isdigit(static_cast<unsigned char>(ch)); })) {
+    c = trim(c.substr(0, star));
+  }
+  return c;
+}
+
+std::string hex_byte(unsigned char u) {
+  static const char* const kHex = "0123456789abcdef";
+  return std::string("0x") + kHex[u >> 4] + kHex[u & 15];
 }
 
 }  // namespace
 
 std::vector<Command> commands_of(std::string_view gcode, const std::string& origin) {
-  if (gcode.find('\0') != std::string_view::npos) throw InputError(origin + ": not a G-code file (binary data)");
+  if (gcode.find('\0') != std::string_view::npos)
+    throw InputError(origin + ": not a G-code file (binary data)");
   std::vector<Command> out;
   int line = 0;
+  const auto refuse = [&](std::string_view raw, const std::string& why) {
+    std::string shown;
+    for (char ch : trim(raw).substr(0, 40))
+      shown += static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f ? '?' : ch;
+    throw InputError(origin + ": line " + std::to_string(line) + ": \"" + shown + "\" " + why);
+  };
   while (!gcode.empty()) {
-    const auto nl = gcode.find('\n');
-    const std::string_view raw = gcode.substr(0, nl);
+    const std::string_view raw = next_line(gcode);
     ++line;
-    std::string c = strip_comments(raw);
-    if (!c.empty()) {
-      if (!looks_like_gcode(c)) {
-        throw InputError(origin + ": line " + std::to_string(line) + ": \"" + std::string(trim(raw)).substr(0, 40) +
-                         "\" is not G-code (a command starts with a letter and a number, such as G1 or M280)");
+    const std::string stripped = strip_comments(raw);
+    const std::string_view c = without_framing(stripped);
+    if (c.empty()) continue;
+    if (!looks_like_gcode(c))
+      refuse(raw,
+             "is not G-code (a command starts with a letter and a number, such as G1 or M280)");
+    for (char ch : c) {
+      const auto u = static_cast<unsigned char>(ch);
+      if ((u < 0x20 && ch != '\t') || u == 0x7f) {
+        refuse(raw, "holds the control character " + hex_byte(u) +
+                        " inside a command (it would reach the controller)");
       }
-      if (out.size() >= kMaxSendLines) throw InputError(origin + ": more than " + std::to_string(kMaxSendLines) + " commands");
-      out.push_back({line, std::move(c)});
+      if (ch == '*')
+        refuse(raw, "holds a '*' inside a command ('*' starts the checksum on the serial line)");
     }
-    if (nl == std::string_view::npos) break;
-    gcode.remove_prefix(nl + 1);
+    if (out.size() >= kMaxSendLines)
+      throw InputError(origin + ": more than " + std::to_string(kMaxSendLines) + " commands");
+    out.push_back({line, std::string(c)});
   }
   if (out.empty()) throw InputError(origin + ": no G-code commands in the file");
   return out;
+}
+
+bool sets_line_number(std::string_view command) {
+  const std::string_view c = trim(command);
+  if (c.empty() || (c[0] != 'M' && c[0] != 'm')) return false;
+  std::string_view rest = trim(c.substr(1));
+  long code = 0;
+  std::size_t i = 0;
+  while (i < rest.size() && i < 9 && std::isdigit(static_cast<unsigned char>(rest[i])))
+    code = code * 10 + (rest[i++] - '0');
+  if (i == 0 || code != 110) return false;
+  return i == rest.size() || (!std::isdigit(static_cast<unsigned char>(rest[i])) && rest[i] != '.');
+}
+
+void refuse_grbl_realtime_characters(const std::vector<Command>& commands,
+                                     const std::string& origin) {
+  for (const auto& c : commands) {
+    for (char ch : c.text) {
+      const auto u = static_cast<unsigned char>(ch);
+      const char* what = ch == '?'   ? "'?' (status report)"
+                         : ch == '!' ? "'!' (feed hold)"
+                         : ch == '~' ? "'~' (cycle start)"
+                                     : nullptr;
+      if (!what && u < 0x80) continue;
+      const std::string name =
+          what ? std::string(what) : "the byte " + hex_byte(u) + " (a real-time override)";
+      throw InputError(origin + ": line " + std::to_string(c.file_line) + ": " + name +
+                       " inside a command: GRBL acts on it at once wherever it appears");
+    }
+  }
 }
 
 int checksum(std::string_view text) {
@@ -107,6 +190,8 @@ Reply parse_reply(std::string_view raw, Firmware firmware) {
   } else if (starts_with_ci(s, "resend:") || starts_with_ci(s, "rs ")) {
     r.kind = ReplyKind::Resend;
     r.line = number_after(s);
+  } else if (s.starts_with("!!")) {
+    r.kind = ReplyKind::Error;  // Klipper: "!! Move out of range: ...", "!! Shutdown"
   } else if (contains_ci(s, "busy:")) {
     r.kind = ReplyKind::Busy;
   } else if (starts_with_ci(s, "error")) {

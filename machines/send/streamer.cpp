@@ -8,6 +8,8 @@ namespace strand::machines {
 
 Streamer::Streamer(Firmware firmware, std::vector<Command> commands)
     : firmware_(firmware), commands_(std::move(commands)) {
+  // the numbering is Strand's: a file's own M110 would make the firmware replay or skip lines
+  std::erase_if(commands_, [](const Command& c) { return sets_line_number(c.text); });
   update_state();
 }
 
@@ -47,6 +49,10 @@ void Streamer::acknowledge_front() {
     in_buffer_.pop_front();
     ++acked_;
   }
+  if (acked_ > best_acked_) {
+    best_acked_ = acked_;
+    resends_without_progress_ = 0;
+  }
   update_state();
 }
 
@@ -62,14 +68,23 @@ void Streamer::on_line(std::string_view line) {
       }
       break;
     case ReplyKind::Resend:
-      if (numbered_protocol() && reset_acked_ && r.line >= 1 && static_cast<std::size_t>(r.line) <= sent_ + 1) {
+      if (numbered_protocol() && !reset_acked_) {
+        reset_sent_ = false;  // the line-number reset itself was garbled
+        ignore_ok_ = true;
+      } else if (numbered_protocol() &&
+                 (r.line < 1 || static_cast<std::size_t>(r.line) > sent_ + 1)) {
+        // a line never sent: the firmware's numbering is no longer Strand's, and taking the
+        // next "ok" as an acknowledgement would skip commands
+        fail("the firmware asked for line " + std::to_string(r.line) + ", but only " +
+             std::to_string(sent_) + " were sent (" + r.text + ")");
+      } else if (numbered_protocol() && ++resends_without_progress_ > kMaxResendsWithoutProgress) {
+        fail("the firmware asked to resend " + std::to_string(kMaxResendsWithoutProgress) +
+             " times without getting further (" + r.text + ")");
+      } else if (numbered_protocol()) {
         // lines before the one asked for have all arrived and the rest has not: rewind to it
         // (this also corrects an M105 probe that answered for a line which was lost)
         acked_ = static_cast<std::size_t>(r.line) - 1;
         sent_ = acked_;
-        ignore_ok_ = true;
-      } else if (numbered_protocol() && !reset_acked_) {
-        reset_sent_ = false;  // the line-number reset itself was garbled
         ignore_ok_ = true;
       }
       break;

@@ -3,6 +3,8 @@
 // next; "Resend: N" rewinds to N; a silent firmware is probed with M105, never by sending a
 // line twice). GRBL: character counting, as many lines in flight as fit its 127-byte receive
 // buffer; a silent GRBL is asked for its status ('?'); idle means every line has run.
+// Line numbers are the streamer's: M110 commands in the file are left out, a resend request
+// for a line never sent stops the job, and so do endless resend requests.
 #pragma once
 
 #include <cstddef>
@@ -16,12 +18,15 @@ namespace strand::machines {
 
 // GRBL's serial receive buffer (128 bytes) less one, as its streaming guide counts.
 inline constexpr std::size_t kGrblBufferBytes = 127;
+// Marlin/RRF: resend requests in a row that bring no new line through before the job stops
+// (a line the firmware can never accept would otherwise be sent for ever).
+inline constexpr int kMaxResendsWithoutProgress = 25;
 
 enum class StreamState {
   Running,
-  Done,      // every command acknowledged
-  Paused,    // pause() asked and nothing is in flight any more
-  Failed,    // the firmware reported an error, an alarm or a restart
+  Done,    // every command acknowledged
+  Paused,  // pause() asked and nothing is in flight any more
+  Failed,  // the firmware reported an error, an alarm or a restart
 };
 
 class Streamer {
@@ -55,12 +60,14 @@ class Streamer {
   std::vector<Command> commands_;
   StreamState state_ = StreamState::Running;
   std::string failure_;
-  std::size_t acked_ = 0;         // commands_[0, acked_) confirmed
-  std::size_t sent_ = 0;          // commands_[0, sent_) written (Marlin: at most acked_ + 1)
-  bool reset_sent_ = false;       // Marlin/RRF: "M110 N0" written
+  std::size_t acked_ = 0;    // commands_[0, acked_) confirmed
+  std::size_t sent_ = 0;     // commands_[0, sent_) written (Marlin: at most acked_ + 1)
+  bool reset_sent_ = false;  // Marlin/RRF: "M110 N0" written
   bool reset_acked_ = false;
-  bool ignore_ok_ = false;        // the "ok" that follows a resend request acknowledges nothing
+  bool ignore_ok_ = false;  // the "ok" that follows a resend request acknowledges nothing
   bool pausing_ = false;
+  std::size_t best_acked_ = 0;  // the most commands ever confirmed (a rewind lowers acked_)
+  int resends_without_progress_ = 0;
   std::deque<std::size_t> in_buffer_;  // GRBL: bytes of each line in flight
 };
 

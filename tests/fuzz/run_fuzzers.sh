@@ -20,9 +20,10 @@ seeds() {  # target -> seed files
     curved_fuzz) ls "$src"/tests/fuzz/seeds/curved_fuzz/* ;;
     mesh_fuzz) ls "$src"/tests/fuzz/seeds/mesh_fuzz/* ;;
     image_fuzz) ls "$src"/samples/plot/*.png ;;
+    send_fuzz) ls "$src"/tests/fuzz/seeds/send_fuzz/* ;;
   esac
 }
-for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz image_fuzz; do
+for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz image_fuzz send_fuzz; do
   exe="$build/tests/fuzz/$target"
   regressions="$src/tests/fuzz/regressions/$target"
   corpus="$build/fuzz-corpus/$target"

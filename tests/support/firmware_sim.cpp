@@ -56,9 +56,11 @@ void FirmwareSim::run() {
       const ssize_t n = read(master_, buf, sizeof buf);
       for (ssize_t i = 0; i < n; ++i) {
         if (grbl_ && buf[i] == '?') {  // realtime status request, outside the line buffer
-          reply(grbl_queue_.empty() ? "<Idle|MPos:0.000,0.000,0.000|FS:0,0>" : "<Run|MPos:0.000,0.000,0.000|FS:0,0>");
-        } else if (buf[i] == '\n') {
-          on_line(pending_);
+          if (!silent_)
+            reply(grbl_queue_.empty() ? "<Idle|MPos:0.000,0.000,0.000|FS:0,0>"
+                                      : "<Run|MPos:0.000,0.000,0.000|FS:0,0>");
+        } else if (buf[i] == '\n' || buf[i] == '\r') {  // both end a line, as in Marlin and GRBL
+          if (!pending_.empty()) on_line(pending_);
           pending_.clear();
         } else {
           pending_ += buf[i];
@@ -74,7 +76,7 @@ void FirmwareSim::on_line(const std::string& line) {
     std::lock_guard<std::mutex> l(mu_);
     received_.push_back(line);
   }
-  if (halted_) return;
+  if (halted_ || silent_) return;
   if (!grbl_) return marlin(line);
   grbl_queue_.push_back(line);
   std::size_t bytes = 0;
@@ -86,6 +88,15 @@ void FirmwareSim::on_line(const std::string& line) {
 // firmware answers `fatal` and halts. True when the command ran (an "ok" is due).
 bool FirmwareSim::run_command(const std::string& command, const std::string& fatal) {
   ++count_;
+  if (count_ == f_.silent_at) {
+    silent_ = true;
+    return false;
+  }
+  if (count_ == f_.klipper_error_at) {
+    reply("!! Move out of range: 300.000 0.000 0.000 [0.000]");
+    reply("ok");
+    return false;
+  }
   if (count_ == f_.disconnect_at) {
     close(master_);
     master_ = -1;
@@ -115,14 +126,20 @@ void FirmwareSim::grbl_execute() {
 
 void FirmwareSim::marlin(const std::string& line) {
   if (line.rfind("N", 0) != 0) {  // unnumbered: M110 resets the numbering, M105 probes
-    if (line.rfind("M110", 0) == 0) last_n_ = 0;
+    if (line.rfind("M110", 0) == 0) {
+      last_n_ = 0;
+    } else if (line.rfind("M105", 0) != 0) {
+      std::lock_guard<std::mutex> l(mu_);
+      executed_.push_back(line);  // any other plain line runs, numbering untouched
+    }
     return reply(line.rfind("M105", 0) == 0 ? "ok T:20.0 /0.0 B:20.0 /0.0" : "ok");
   }
   const auto star = line.rfind('*');
   const long n = std::strtol(line.c_str() + 1, nullptr, 10);
   const std::string body = line.substr(0, star);
   const std::string command = body.substr(body.find(' ') + 1);
-  const bool bad_sum = star == std::string::npos || std::atoi(line.c_str() + star + 1) != machines::checksum(body);
+  const bool bad_sum =
+      star == std::string::npos || std::atoi(line.c_str() + star + 1) != machines::checksum(body);
   if (n <= highest_n_) {  // seen before: allowed once per resend request that covered it
     if (may_repeat_.erase(n) == 0) ++unrequested_;
   }
@@ -138,8 +155,12 @@ void FirmwareSim::marlin(const std::string& line) {
     corrupted_ = corrupted_ || n == f_.corrupt_at;
     return resend("checksum mismatch");
   }
-  if (n != last_n_ + 1) return resend("Line Number is not Last Line Number+1");
+  const bool m110 = command.rfind("M110", 0) == 0;
+  if (n != last_n_ + 1 && !m110) return resend("Line Number is not Last Line Number+1");
   last_n_ = n;
+  if (m110 && command.find('N') != std::string::npos) {  // Marlin: "N7 M110 N0" -> last line 0
+    last_n_ = std::strtol(command.c_str() + command.find('N') + 1, nullptr, 10);
+  }
   if (!run_command(command, "Error:Printer halted. kill() called!")) return;
   if (count_ == f_.busy_at) {
     for (int i = 0; i < 4; ++i) {

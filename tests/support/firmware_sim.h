@@ -1,7 +1,9 @@
 // A simulated controller on a pseudo-terminal (openpty) for testing `strand send`: Marlin
 // (line numbers, checksums, "Resend:", duplicates refused by line number) or GRBL (a
 // 127-byte receive buffer, "ok" per line, '?' status), with faults injected on request.
-// It records exactly which commands it executed, in order.
+// Like the real firmware it ends a line at LF or CR, runs unnumbered lines as they come and
+// takes a numbered "M110 N<k>" as "the last line was k". It records exactly which commands
+// it executed, in order.
 #pragma once
 
 #include <atomic>
@@ -14,11 +16,13 @@
 namespace strand::testing {
 
 struct SimFaults {
-  int drop_ok_at = 0;      // the ok of the k-th executed command is never sent
-  int corrupt_at = 0;      // the first arrival of line k (Marlin) has a "bad checksum"
-  int error_at = 0;        // command k answers a fatal error and the firmware halts
-  int disconnect_at = 0;   // the port vanishes when command k arrives
-  int busy_at = 0;         // command k takes long, with "busy: processing" keep-alives
+  int drop_ok_at = 0;        // the ok of the k-th executed command is never sent
+  int corrupt_at = 0;        // the first arrival of line k (Marlin) has a "bad checksum"
+  int error_at = 0;          // command k answers a fatal error and the firmware halts
+  int disconnect_at = 0;     // the port vanishes when command k arrives
+  int busy_at = 0;           // command k takes long, with "busy: processing" keep-alives
+  int silent_at = 0;         // from command k on the firmware neither runs nor answers anything
+  int klipper_error_at = 0;  // command k answers "!! Move out of range" and "ok" (not run)
 };
 
 class FirmwareSim {
@@ -53,7 +57,7 @@ class FirmwareSim {
   std::string pending_;
   long last_n_ = 0;
   int count_ = 0;
-  bool halted_ = false, corrupted_ = false;
+  bool halted_ = false, corrupted_ = false, silent_ = false;
   std::atomic<int> resends_{0};
   int unrequested_ = 0;
   std::set<long> may_repeat_;  // numbered lines a resend request asked for again

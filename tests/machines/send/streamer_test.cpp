@@ -41,8 +41,10 @@ TEST(Protocol, RepliesAreClassified) {
   EXPECT_EQ(r.line, 17);
   EXPECT_EQ(parse_reply("rs 4", Firmware::RepRap).line, 4);
   EXPECT_EQ(parse_reply("echo:busy: processing", Firmware::Marlin).kind, ReplyKind::Busy);
-  EXPECT_EQ(parse_reply("Error:checksum mismatch, Last Line: 3", Firmware::Marlin).kind, ReplyKind::LineError);
-  EXPECT_EQ(parse_reply("Error:Printer halted. kill() called!", Firmware::Marlin).kind, ReplyKind::Error);
+  EXPECT_EQ(parse_reply("Error:checksum mismatch, Last Line: 3", Firmware::Marlin).kind,
+            ReplyKind::LineError);
+  EXPECT_EQ(parse_reply("Error:Printer halted. kill() called!", Firmware::Marlin).kind,
+            ReplyKind::Error);
   EXPECT_EQ(parse_reply("error:22", Firmware::Grbl).kind, ReplyKind::Error);
   EXPECT_EQ(parse_reply("ALARM:1", Firmware::Grbl).kind, ReplyKind::Alarm);
   EXPECT_TRUE(parse_reply("<Idle|MPos:0,0,0>", Firmware::Grbl).idle);
@@ -80,7 +82,7 @@ TEST(Streamer, AProbeAnsweredForALostLineIsCorrectedByTheResend) {
   s.on_line("ok");
   s.next_write();  // N1, lost on the wire
   EXPECT_EQ(s.on_silence(), "M105\n");
-  s.on_line("ok");                         // M105's ok: line 1 looks done
+  s.on_line("ok");  // M105's ok: line 1 looks done
   EXPECT_EQ(s.next_write(), numbered(2, "G1 X2") + "\n");
   s.on_line("Error:Line Number is not Last Line Number+1, Last Line: 0");
   s.on_line("Resend: 1");
@@ -129,8 +131,72 @@ TEST(Streamer, PauseWaitsForTheLinesInFlight) {
   EXPECT_EQ(s.resume_line(), 12);
 }
 
+// The numbering is the streamer's: a file's M110 is never sent, whatever its N.
+TEST(Streamer, AFilesM110IsLeftOutOfTheNumbering) {
+  for (const char* reset : {"M110 N0", "M110 N5", "M110"}) {
+    Streamer s(Firmware::Marlin, {{1, "G1 X1"}, {2, reset}, {3, "G1 X2"}});
+    EXPECT_EQ(s.total(), 2u);
+    EXPECT_EQ(s.next_write(), "M110 N0\n");
+    s.on_line("ok");
+    EXPECT_EQ(s.next_write(), numbered(1, "G1 X1") + "\n");
+    s.on_line("ok");
+    EXPECT_EQ(s.next_write(), numbered(2, "G1 X2") + "\n");
+    s.on_line("ok");
+    EXPECT_EQ(s.state(), StreamState::Done);
+  }
+}
+
+// A resend request for a line never sent means the firmware's numbering is not ours: the
+// "ok" after it would otherwise acknowledge a line that did not run.
+TEST(Streamer, AResendForALineNeverSentStopsTheJob) {
+  Streamer s(Firmware::Marlin, cmds(5));
+  s.next_write();
+  s.on_line("ok");
+  s.next_write();  // N1
+  s.on_line("ok");
+  s.next_write();  // N2
+  s.on_line("Error:Line Number is not Last Line Number+1, Last Line: 5");
+  s.on_line("Resend: 6");
+  s.on_line("ok");
+  EXPECT_EQ(s.state(), StreamState::Failed);
+  EXPECT_EQ(s.acknowledged(), 1u);
+  EXPECT_EQ(s.resume_line(), 12);
+  EXPECT_NE(s.failure().find("asked for line 6"), std::string::npos) << s.failure();
+}
+
+TEST(Streamer, EndlessResendRequestsStopTheJob) {
+  Streamer s(Firmware::Marlin, cmds(3));
+  s.next_write();
+  s.on_line("ok");
+  int sent = 0;
+  while (s.state() == StreamState::Running && sent < 1000) {
+    if (!s.next_write().empty()) ++sent;
+    s.on_line("Error:checksum mismatch, Last Line: 0");
+    s.on_line("Resend: 1");
+    s.on_line("ok");
+  }
+  EXPECT_EQ(s.state(), StreamState::Failed);
+  EXPECT_EQ(sent, kMaxResendsWithoutProgress + 1);
+  EXPECT_EQ(s.resume_line(), 11);
+}
+
+TEST(Streamer, KlipperErrorStopsAtTheLineInFlight) {
+  Streamer s(Firmware::Klipper, cmds(3));
+  s.next_write();
+  s.on_line("ok");
+  s.next_write();
+  s.on_line("ok");
+  s.next_write();  // N2
+  s.on_line("!! Move out of range: 300.000 0.000 0.000 [0.000]");
+  s.on_line("ok");
+  EXPECT_EQ(s.state(), StreamState::Failed);
+  EXPECT_EQ(s.acknowledged(), 1u);
+  EXPECT_EQ(s.resume_line(), 12);
+}
+
 TEST(Resume, ModalStateBeforeALineAndItsPreamble) {
-  const auto c = commands_of("G21\nG90\nM280 P0 S30\nG1 X10 Y20 Z0.4 F1200\nG91\nG1 X5\nG90\nG1 X30 Y40\n", "f");
+  const auto c = commands_of(
+      "G21\nG90\nM280 P0 S30\nG1 X10 Y20 Z0.4 F1200\nG91\nG1 X5\nG90\nG1 X30 Y40\n", "f");
   const auto m = load_profile("xy-plotter-servo");
   const ModalState s = modal_state_before(c, 8, m);
   EXPECT_EQ(s.x, 15.0);
@@ -140,7 +206,8 @@ TEST(Resume, ModalStateBeforeALineAndItsPreamble) {
   EXPECT_FALSE(s.relative);
   EXPECT_EQ(s.tool_state, std::vector<std::string>{"M280 P0 S30"});
   const auto p = resume_preamble(m, s);
-  EXPECT_EQ(p, (std::vector<std::string>{"G21", "G90", "M280 P0 S90 ; pen up", "G0 X15.000 Y20.000 F6000", "G1 F1200", "M280 P0 S30"}));
+  EXPECT_EQ(p, (std::vector<std::string>{"G21", "G90", "M280 P0 S90 ; pen up",
+                                         "G0 X15.000 Y20.000 F6000", "G1 F1200", "M280 P0 S30"}));
 }
 
 TEST(Resume, ValveMachinesCloseTheValveToPause) {
