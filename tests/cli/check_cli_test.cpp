@@ -155,6 +155,63 @@ TEST(CheckCliRules, InchFileIsConvertedAndNotedNotFailed) {
   EXPECT_NEAR(j["layers"][0]["z_mm"].get<double>(), 0.508, 1e-9);
 }
 
+// A Vitaprint-style bioprinter scaffold (issue 19): no E, each layer raised by
+// G1 Z[#<_z> + 0.2]; five layers of a log-pile, each a serpentine of 5 bars that never
+// crosses itself (bars along X, then along Y, ...). Written by hand for this test.
+std::string vitaprint_scaffold() {
+  std::string g = "%\n;Set X0Y0.\nG92\tX0\tY0\n;Go to Z0 and set feedrate.\nG1\tZ0.2\tF300\n";
+  const char* along_x = "G1 X8 Y0\nG1 Y2\nG1 X0\nG1 Y4\nG1 X8\nG1 Y6\nG1 X0\nG1 Y8\nG1 X8\n";
+  const char* along_y = "G1 Y0\nG1 X6\nG1 Y8\nG1 X4\nG1 Y0\nG1 X2\nG1 Y8\nG1 X0\nG1 Y0\n";
+  for (int k = 0; k < 5; ++k) {
+    if (k > 0) g += "G1\tZ[#<_z> +0.2]\n";
+    g += k % 2 == 0 ? along_x : along_y;
+  }
+  return g + "%\n";
+}
+
+TEST(CheckCliDialects, AVitaprintScaffoldChecksAsItsFiveLayersWithoutCrossings) {
+  const auto dir = fresh_dir("check-vitaprint");
+  write(dir + "/scaffold.gcode", vitaprint_scaffold());
+  const auto r = run_strand("check scaffold.gcode --json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["layers"].size(), 5u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    EXPECT_NEAR(j["layers"][k]["z_mm"].get<double>(), 0.2 * (k + 1), 1e-9);
+    EXPECT_EQ(j["layers"][k]["strands"].get<int>(), 1);
+  }
+  EXPECT_EQ(j["crossings"].get<int>(), 0);
+  EXPECT_TRUE(j["parse_issues"].empty());
+}
+
+TEST(CheckCliDialects, DivisionByZeroAndAnEndlessLoopExitTwoNamingTheLine) {
+  const auto dir = fresh_dir("check-ngc-bad");
+  write(dir + "/div.gcode", "G1 X1 Y1 Z0.2\n#<layers> = 0\nG1 Z[1 / #<layers>]\n");
+  expect_input_error(run_strand("check div.gcode", dir),
+                     "input = div.gcode: line 3: division by zero");
+  write(dir + "/loop.gcode", "G1 X0 Z0.2\no10 while [1 GT 0]\nG1 X[#<_x> + 1]\no10 endwhile\n");
+  expect_input_error(run_strand("check loop.gcode", dir), "line 2: this O-word loop");
+}
+
+TEST(CheckCliDialects, UnsupportedIsNamedOnceAndAMillingProgramIsNamed) {
+  const auto dir = fresh_dir("check-ngc-unsupported");
+  write(dir + "/sub.gcode", "G1 X1 Y0 Z0.2\nG1 X2\no<prime> call\nG1 Z0.4\nG1 X1 Y1\n");
+  const auto r = run_strand("check sub.gcode", dir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("unsupported: O-word call of o<prime>"), std::string::npos) << r.out;
+  write(dir + "/mill.ngc", "G21 G90\nM3 S10000\nG0 Z5\nG0 X0 Y0\nG1 Z-2 F100\nG1 X30\nM5\n");
+  const auto m = run_strand("check mill.ngc", dir);
+  EXPECT_EQ(m.exit_code, 1) << m.err;
+  EXPECT_NE(m.out.find("milling program"), std::string::npos) << m.out;
+}
+
+TEST(CheckCliDialects, AFileWithoutMovesExitsTwoAsPreviewDoes) {
+  const auto dir = fresh_dir("check-no-moves");
+  write(dir + "/empty.gcode", "; nothing here\nM84\n");
+  expect_input_error(run_strand("check empty.gcode", dir), "input = empty.gcode: no moves");
+  expect_input_error(run_strand("preview empty.gcode -o e.png", dir), "input = empty.gcode");
+}
+
 struct BadCase {
   const char* name;
   const char* args;
