@@ -186,7 +186,8 @@ std::string strip_comments(std::string_view s) {
 }
 
 // A line that needs the RS274NGC reader: parameters or expressions in its code, and not a
-// vendor's extended command ("EXCLUDE_OBJECT_DEFINE ... POLYGON=[[..]]", "M117 [text]").
+// vendor's extended command ("EXCLUDE_OBJECT_DEFINE ... POLYGON=[[..]]", "M117 [text]",
+// RepRapFirmware's "G1 X{move.axes[0].max}", read as before: a malformed number).
 bool is_ngc_line(std::string_view s) {
   if (s.size() >= 2 && is_letter(s[0]) && (is_letter(s[1]) || s[1] == '_')) return false;
   if (s[0] == 'M' || s[0] == 'm') {
@@ -196,7 +197,7 @@ bool is_ngc_line(std::string_view s) {
   }
   int paren = 0;
   for (char c : s) {
-    if (c == ';') return false;
+    if (c == ';' || c == '{') return false;  // RepRapFirmware's {expressions} are not RS274NGC
     if (c == '(') ++paren;
     if (c == ')' && paren > 0) --paren;
     if (paren == 0 && (c == '#' || c == '[')) return true;

@@ -13,6 +13,7 @@
 #include "postprocess/inspect/cylinder_contacts.h"
 #include "postprocess/plan/laps.h"
 #include "slicer/input_error.h"
+#include "slicer/params.h"
 #include "slicer/tolerances.h"
 #include "slicer/units.h"
 
@@ -40,6 +41,11 @@ std::size_t PoseCheckReport::crossing_count() const {
 }
 
 namespace {
+
+// The planner's lap slack (laps.cpp): a reversal smaller than this does not start a lap, rad.
+constexpr double kLapSlackRad = 0.017453292519943295;
+// Lap checking passes over a layer once per lap: at most this many row visits.
+constexpr double kMaxLapWork = 2e8;
 
 // A workpiece orientation is a unit quaternion to this (the file writes 9 decimals).
 constexpr double kQuaternionUnit = 1e-6;
@@ -252,6 +258,35 @@ void check_numbering(const std::vector<RawRow>& raw, const std::vector<slicer::P
   }
   // Laps as the planner splits them from the turns: each turns the workpiece one way.
   if (r.numbering.total != 0) return;  // the split needs layers in order
+  // The split costs a pass over a layer per lap: bound it by the turn's reversals first.
+  double work = 0.0;
+  std::size_t reversals = 0;
+  for (std::size_t b = 0; b < rows.size();) {
+    std::size_t e = b;
+    while (e + 1 < rows.size() && rows[e + 1].layer == rows[b].layer) ++e;
+    double hi = rows[b].turn_rad, lo = hi;
+    int dir = 0;
+    std::size_t n = 0;
+    for (std::size_t i = b; i <= e; ++i) {
+      const double t = rows[i].turn_rad;
+      if (dir >= 0) {
+        hi = std::max(hi, t);
+        if (hi - t > kLapSlackRad) ++n, dir = -1, lo = t;
+      } else {
+        lo = std::min(lo, t);
+        if (t - lo > kLapSlackRad) ++n, dir = 1, hi = t;
+      }
+    }
+    reversals += n;
+    work += static_cast<double>(n + 2) * static_cast<double>(e - b + 1);
+    b = e + 1;
+  }
+  if (work > kMaxLapWork) {
+    r.numbering.add(0, "the turn reverses " + std::to_string(reversals) +
+                           " times: laps are not checked past " +
+                           slicer::short_number(kMaxLapWork) + " steps of work");
+    return;
+  }
   slicer::PoseProgram program;
   program.points = rows;
   assign_laps(program);

@@ -32,6 +32,9 @@ struct RotaryComments {
   std::optional<double> speed_mm_per_min;              // "; param speed = S"
   std::map<std::string, double> speed_factors;         // "; param infill-speed-factor = f"
   bool inverse_time = false;                           // a G93 line
+  // "; substrate: ... wrap patch, arc length at surface": the pattern is centred on u = 0
+  // with u = turn x substrate radius (postprocess/plan/cylinder_placement.h).
+  bool centred_patch = false;
 };
 
 bool starts_with(std::string_view s, std::string_view p) { return s.substr(0, p.size()) == p; }
@@ -61,6 +64,9 @@ RotaryComments read_comments(std::string_view text) {
       long long n = -1;
       const auto r = std::from_chars(line.data() + 7, line.data() + line.size(), n);
       c.layer_marks.push_back({line_no, r.ec == std::errc() ? n : -1});
+    } else if (starts_with(line, "; substrate: cylinder") &&
+               line.find("wrap patch, arc length at surface") != std::string_view::npos) {
+      c.centred_patch = true;
     } else if (starts_with(line, "; machine: ") && c.machine.empty()) {
       const std::string_view rest = line.substr(11);
       c.machine = std::string(rest.substr(0, rest.find(' ')));
@@ -296,6 +302,29 @@ void check_layers(const RotaryComments& c, const std::vector<double>& z, const R
   }
 }
 
+// A patch is centred on u = 0 (the line under the nozzle at A = 0): every A shifted alike
+// moves the whole pattern off it. Within half a millimetre (sampled arcs, rounding).
+void check_centre(const std::vector<CylinderSample>& samples, const RotaryHeader& h,
+                  PoseCheckReport& r) {
+  constexpr double kCentreMm = 0.5;
+  double lo = 1e300, hi = -1e300;
+  std::size_t first = 0;
+  for (const auto& s : samples) {
+    if (!s.extrude) continue;
+    const double u = std::atan2(s.p_mm.y(), s.p_mm.x()) * h.radius_mm;
+    if (lo > hi) first = s.source;
+    lo = std::min(lo, u), hi = std::max(hi, u);
+  }
+  if (lo > hi) return;
+  const double centre = (lo + hi) / 2.0;
+  if (std::abs(centre) > kCentreMm) {
+    r.off_surface.add(first, "the pattern's centre is " + fmt_fixed(centre, 3) + " mm (" +
+                                 fmt_fixed(slicer::rad_to_deg(centre / h.radius_mm), 3) +
+                                 " deg of A) around from u = 0, where the header's placement "
+                                 "centres a patch (A shifted?)");
+  }
+}
+
 }  // namespace
 
 PoseCheckReport check_rotary_gcode(std::string_view text, const std::string& file,
@@ -331,6 +360,7 @@ PoseCheckReport check_rotary_gcode(std::string_view text, const std::string& fil
     }
   }
   check_on_cylinder(samples, slicer::kGcodeResolutionMm, r);
+  if (comments.centred_patch) check_centre(samples, h, r);
   const auto planned_on = planning_machine(machine, comments.machine);
   check_layers(comments, layer_z(text), h, planned_on, r);
   const std::vector<RotaryMove> moves = rotary_moves(parsed, samples, comments.inverse_time);

@@ -312,6 +312,10 @@ TEST(GcodeDialects, VendorLinesWithBracketsStayAsTheyWere) {
       "EXCLUDE_OBJECT_DEFINE NAME=a CENTER=1,1 POLYGON=[[0,0],[1,1]]\nM117 [50%]\nG1 X1\n");
   EXPECT_TRUE(r.issues.empty());
   EXPECT_EQ(r.program.moves.size(), 1u);
+  // RepRapFirmware's own expressions stay a malformed number, as before (not exit 2).
+  const auto rrf = parse_gcode("G1 X1\nG1 X{move.axes[0].max - 10}\n");
+  ASSERT_EQ(rrf.issues.size(), 1u);
+  EXPECT_EQ(rrf.issues[0].line, 2);
 }
 
 TEST(GcodeDialects, ValveOutputsDepositWhenTheProfileSwitchesThem) {

@@ -358,6 +358,24 @@ TEST(RotaryCheckTampering, AnAShiftOnOneLineIsFoundThere) {
   EXPECT_TRUE(names_line(r, line)) << to_text(r);
 }
 
+TEST(RotaryCheckTampering, EveryAShiftedAlikeMovesThePatchOffItsCentre) {
+  std::string g;
+  std::istringstream in(rotary_gcode());
+  for (std::string l; std::getline(in, l);) {
+    const std::size_t a = l.find(" A");
+    if ((l.rfind("G0 ", 0) == 0 || l.rfind("G1 ", 0) == 0) && a != std::string::npos) {
+      const std::size_t end = l.find(' ', a + 2);
+      char buf[40];
+      std::snprintf(buf, sizeof buf, "%.3f", std::stod(l.substr(a + 2, end - a - 2)) + 20);
+      l.replace(a + 2, end == std::string::npos ? std::string::npos : end - a - 2, buf);
+    }
+    g += l + "\n";
+  }
+  const auto r = check_rotary_gcode(g, "r.gcode", &rotary_machine());
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(to_text(r).find("20.000 deg of A"), std::string::npos) << to_text(r);
+}
+
 TEST(RotaryCheckTampering, FeedsTimesFiveAreFound) {
   const std::string& g0 = rotary_gcode();
   const std::size_t line = deposit_line(g0, ";LAYER:2", 10);
