@@ -190,6 +190,7 @@ std::string strip_comments(std::string_view s) {
 // RepRapFirmware's "G1 X{move.axes[0].max}", read as before: a malformed number).
 bool is_ngc_line(std::string_view s) {
   if (s.size() >= 2 && is_letter(s[0]) && (is_letter(s[1]) || s[1] == '_')) return false;
+  if (!is_letter(s[0]) && s[0] != '#' && s[0] != '/') return false;  // not code: JSON, text
   if (s[0] == 'M' || s[0] == 'm') {
     int m = 0;
     std::from_chars(s.data() + 1, s.data() + s.size(), m);

@@ -312,6 +312,8 @@ TEST(GcodeDialects, VendorLinesWithBracketsStayAsTheyWere) {
       "EXCLUDE_OBJECT_DEFINE NAME=a CENTER=1,1 POLYGON=[[0,0],[1,1]]\nM117 [50%]\nG1 X1\n");
   EXPECT_TRUE(r.issues.empty());
   EXPECT_EQ(r.program.moves.size(), 1u);
+  // Text that is not G-code (a job's JSON) is not read as expressions either.
+  EXPECT_NO_THROW(parse_gcode("{\n  \"size\": [36, 36],\n  \"layers\": 3\n}\n"));
   // RepRapFirmware's own expressions stay a malformed number, as before (not exit 2).
   const auto rrf = parse_gcode("G1 X1\nG1 X{move.axes[0].max - 10}\n");
   ASSERT_EQ(rrf.issues.size(), 1u);
