@@ -6,11 +6,11 @@
 #include <memory>
 #include <optional>
 
+#include "cli/commands.h"
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
 #include "postprocess/inspect/pose_check.h"
 #include "postprocess/preview/preview_image.h"
-#include "cli/commands.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -101,8 +101,15 @@ int run_check(const CheckArgs& a) {
   }
   std::optional<post::RulesChoice> given;
   if (!a.rules.empty()) given = {post::check_rules_from_string(a.rules), "given with --rules"};
-  const post::CheckInput in = post::read_for_check(text, machine.get(), given);
+  post::CheckInput in;
+  try {
+    in = post::read_for_check(text, machine.get(), given);
+  } catch (const InputError& e) {
+    throw InputError("input = " + a.file + ": " + e.what());
+  }
   const post::ParsedGcode& parsed = in.parsed;
+  if (parsed.program.moves.empty() && parsed.issues.empty())
+    throw InputError("input = " + a.file + ": no moves to check (is it G-code?)");
   post::CheckOptions options;
   options.rules = in.rules;
   options.arc_tolerance_mm = a.arc_tolerance_mm;

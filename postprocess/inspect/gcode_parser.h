@@ -21,8 +21,8 @@ inline constexpr double kMinFlattenToleranceMm = 1e-3;
 inline constexpr double kMaxArcChords = 5e7;
 
 struct ParseIssue {
-  int line = 0;        // 1-based line number
-  std::string what;    // "inch units (G20)", "non-finite number in 'X nan'"
+  int line = 0;      // 1-based line number
+  std::string what;  // "inch units (G20)", "non-finite number in 'X nan'"
 };
 
 struct ParsedGcode {
@@ -31,12 +31,14 @@ struct ParsedGcode {
   // How the file was read where it could be read more than one way (inch units converted,
   // which pen convention): reported, never a failure.
   std::vector<ParseIssue> notes;
-  std::vector<int> arc_lines;      // lines holding G2/G3
-  std::vector<int> move_lines;     // source line of each move in program.moves
+  std::vector<int> arc_lines;   // lines holding G2/G3
+  std::vector<int> move_lines;  // source line of each move in program.moves
   // Rotary-axis files (A words, degrees): the A position after each move, parallel to
   // program.moves; empty when the file has no A word.
   std::vector<double> a_deg;
-  bool has_e = false;              // deposits are recognised by E when true, by G1 otherwise
+  // E advanced by each move (relative or absolute E read as a step), parallel to a_deg.
+  std::vector<double> e_step;
+  bool has_e = false;  // deposits are recognised by E when true, by G1 otherwise
   bool inches = false;
   int pen_commands = 0;  // M300/M280/M3/M4/M5 read as pen up or down
   // Some were M300 S or M280 S: a pen servo. M3/M5 alone may drive a pen, a laser or a
@@ -45,9 +47,17 @@ struct ParsedGcode {
 };
 
 // Layers come from ;LAYER:/;LAYER_CHANGE comments when present, else from z changes of
-// deposits. A deposit is a move with growing E (files with E words) or any G1/G2/G3 that
-// moves in XY (files without E, as for valve and pen machines) while the pen, if the file
-// lifts one (M300 S, M280 S, M3/M5 read through `pen`, or z above pen.z_down_max_mm), is down.
+// deposits. RS274NGC dialects (LinuxCNC, Planet CNC) are read: parameters (#1, #<name>,
+// #<_x>/#<_y>/#<_z> the current position), [expressions] (ngc_expression.h), O-word
+// subroutines, if/while/do/repeat blocks, run with a bound on repeated lines. Throws
+// InputError naming the line for an expression error (division by zero, an unset
+// parameter), unmatched O-word blocks and a loop past the bound; a construct the reader
+// cannot follow (a call of a subroutine in another file, a probe result) is one issue
+// "unsupported: ... at line N" and the rest of the file is not read. A milling program
+// (spindle above 1000 rpm, cutting below z 0) is named in the issues. A deposit is a move with
+// growing E (files with E words) or any G1/G2/G3 that moves in XY (files without E, as for valve
+// and pen machines) while the pen, if the file lifts one (M300 S, M280 S, M3/M5 read through `pen`,
+// or z above pen.z_down_max_mm), is down.
 ParsedGcode parse_gcode(std::string_view text, const PenReading& pen = {});
 
 // A pen drawing: as parse_gcode, and when the file lifts its pen by neither command nor the

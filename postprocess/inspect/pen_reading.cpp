@@ -4,6 +4,7 @@
 #include "postprocess/inspect/pen_reading.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <limits>
 
@@ -28,8 +29,39 @@ bool from_profile(const PenReading& r) { return r.down_value && r.up_value; }
 
 }  // namespace
 
+namespace {
+
+// "M62 P0 ; open" -> (62, 0); nullopt for anything but M62-M65.
+std::optional<std::pair<int, std::optional<double>>> output_command(const std::string& line) {
+  int m = 0;
+  if (line.size() < 3 || (line[0] != 'M' && line[0] != 'm')) return std::nullopt;
+  const auto r = std::from_chars(line.data() + 1, line.data() + line.size(), m);
+  if (r.ec != std::errc() || m < 62 || m > 65) return std::nullopt;
+  std::optional<double> p;
+  const std::size_t at = line.find_first_of("Pp");
+  const std::size_t semi = line.find(';');
+  if (at != std::string::npos && at < semi) {
+    double v = 0;
+    if (std::from_chars(line.data() + at + 1, line.data() + line.size(), v).ec == std::errc())
+      p = v;
+  }
+  return std::pair{m, p};
+}
+
+}  // namespace
+
 PenReading pen_reading_from(const machines::MachineProfile& m) {
   PenReading r;
+  const auto& d = m.deposition;
+  if (d.model == machines::DepositionModel::Valve && !d.on_gcode.empty() && !d.off_gcode.empty()) {
+    const auto on = output_command(d.on_gcode.front());
+    const auto off = output_command(d.off_gcode.front());
+    if (on && off && on->first != off->first) {
+      r.valve_on_m = on->first;
+      r.valve_off_m = off->first;
+      r.valve_p = on->second;
+    }
+  }
   if (!m.plotter.enabled) return r;
   const machines::PenSetup& pen = m.plotter.pen;
   r.machine = m.name;

@@ -24,9 +24,15 @@ struct PenReading {
   // from the file (lowest drawing z + kPenLiftMinMm) when the check reads a drawing.
   std::optional<double> z_down_max_mm;
   std::string machine;  // profile the values come from, empty for the conventions
+  // Valve outputs as LinuxCNC and Planet CNC switch them (M62/M64 on, M63/M65 off, P the
+  // output): read only when a valve profile's on_gcode/off_gcode use them; then a G1 that
+  // moves in XY deposits while the output is on.
+  std::optional<int> valve_on_m, valve_off_m;
+  std::optional<double> valve_p;
 };
 
-// The pen settings of a plotter profile (empty reading for printers and drum plotters).
+// The pen settings of a plotter profile (empty reading for printers and drum plotters), and
+// the valve outputs of a valve printer whose commands are M62-M65.
 PenReading pen_reading_from(const machines::MachineProfile& m);
 
 // M-code `m` with its S and P words: true = pen down, false = pen up, nullopt = says nothing

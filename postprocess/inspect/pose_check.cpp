@@ -2,13 +2,18 @@
 #include "postprocess/inspect/pose_check.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "machines/gcode_format.h"
 #include "machines/pose_csv.h"
 #include "machines/workpiece_pose.h"
 #include "postprocess/inspect/cylinder_contacts.h"
+#include "postprocess/plan/laps.h"
 #include "slicer/input_error.h"
+#include "slicer/params.h"
 #include "slicer/tolerances.h"
 #include "slicer/units.h"
 
@@ -26,7 +31,7 @@ bool PoseCheckReport::ok() const {
   const bool joints_ok = !joints_checked || joints.ok();
   return crossing_count() == 0 && off_tip.total == 0 && normals.total == 0 &&
          off_surface.total == 0 && speed.total == 0 && outside.total == 0 && parse.total == 0 &&
-         joints_ok;
+         numbering.total == 0 && quaternions.total == 0 && extrusion.total == 0 && joints_ok;
 }
 
 std::size_t PoseCheckReport::crossing_count() const {
@@ -36,6 +41,14 @@ std::size_t PoseCheckReport::crossing_count() const {
 }
 
 namespace {
+
+// The planner's lap slack (laps.cpp): a reversal smaller than this does not start a lap, rad.
+constexpr double kLapSlackRad = 0.017453292519943295;
+// Lap checking passes over a layer once per lap: at most this many row visits.
+constexpr double kMaxLapWork = 2e8;
+
+// A workpiece orientation is a unit quaternion to this (the file writes 9 decimals).
+constexpr double kQuaternionUnit = 1e-6;
 
 double median(std::vector<double> v) {
   if (v.empty()) return 0.0;
@@ -71,6 +84,13 @@ void check_on_cylinder(const std::vector<CylinderSample>& s, double touch_mm, Po
                                            fmt_fixed(lc.radius_mm, 4) + " mm");
       }
       const CylinderSample& from = s[i - 1];
+      const double from_rad = from.p_mm.head<2>().norm();
+      if ((!from.extrude || from.layer != s[i].layer) &&
+          std::abs(from_rad - lc.radius_mm) > slicer::kOffSurfaceMm) {
+        r.off_surface.add(s[i].source, "deposit starts at radius " + fmt_fixed(from_rad, 4) +
+                                           " mm, off the layer's " + fmt_fixed(lc.radius_mm, 4) +
+                                           " mm (a travel marked as depositing?)");
+      }
       // A strand starts where the deposit starts (a file may start depositing at its very
       // first sample: then no strand is open yet).
       if (cl.strands.empty() || i == b || !from.extrude) {
@@ -96,12 +116,26 @@ void check_on_cylinder(const std::vector<CylinderSample>& s, double touch_mm, Po
 
 namespace {
 
-// Nozzle tip and axis, speeds against plan and profile.
+// A row's time may differ from distance / speed by the file's rounding: 4 decimals of
+// position (a chord up to 2e-4 mm off) and 6 of time, plus kSpeedDeviation.
+bool time_fits(double len_mm, double dt_s, double speed_mm_per_s) {
+  const double expected = len_mm / speed_mm_per_s;
+  return std::abs(dt_s - expected) <=
+         slicer::kSpeedDeviation * expected + 2e-6 + 2e-4 / speed_mm_per_s;
+}
+
+// Nozzle tip and axis, unit quaternions, times against distance / speed, speeds against the
+// cell (deposits at v_cart, travels at its travel speed).
 void check_rows(const std::vector<slicer::PosePoint>& rows, const machines::RobotCell& cell,
                 PoseCheckReport& r) {
   const Vec3 up = -cell.nozzle_axis;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& p = rows[i];
+    const double q_norm = p.workpiece_wxyz.norm();
+    if (std::abs(q_norm - 1.0) > kQuaternionUnit) {
+      r.quaternions.add(i, "quaternion of norm " + fmt_fixed(q_norm, 9) +
+                               ", not a unit quaternion (within 1e-6)");
+    }
     const Eigen::Matrix3d rot = machines::rotation_of(p.workpiece_wxyz);
     const double off = (rot * p.contact_mm + p.workpiece_origin_mm - cell.nozzle_tip_mm).norm();
     if (off > slicer::kPoseTipMm)
@@ -112,20 +146,159 @@ void check_rows(const std::vector<slicer::PosePoint>& rows, const machines::Robo
       r.normals.add(i, "normal " + fmt_fixed(angle, 3) + " deg off the nozzle axis");
     if (i == 0) continue;
     const double len = (p.contact_mm - rows[i - 1].contact_mm).norm(), dt = p.t_s - rows[i - 1].t_s;
+    if (!(p.speed_mm_per_s > 0)) {
+      r.speed.add(i, "speed " + fmt_fixed(p.speed_mm_per_s, 4) + " mm/s: a move needs a speed > 0");
+      continue;
+    }
     if (len > 0 && dt <= 0) {
       r.speed.add(i, "time does not advance (" + fmt_fixed(dt, 6) + " s) over " +
                          fmt_fixed(len, 4) + " mm");
-    } else if (len >= slicer::kSpeedCheckMinMm &&
-               std::abs(len / dt - p.speed_mm_per_s) > slicer::kSpeedDeviation * p.speed_mm_per_s) {
-      r.speed.add(i, "moves at " + fmt_fixed(len / dt, 3) + " mm/s, planned " +
-                         fmt_fixed(p.speed_mm_per_s, 3) + " mm/s");
+    } else if (!time_fits(len, dt, p.speed_mm_per_s)) {
+      r.speed.add(i, "takes " + fmt_fixed(dt, 6) + " s for " + fmt_fixed(len, 4) + " mm at " +
+                         fmt_fixed(p.speed_mm_per_s, 3) + " mm/s (" +
+                         fmt_fixed(len / p.speed_mm_per_s, 6) + " s)");
     }
-    if (p.extrude && std::abs(p.speed_mm_per_s - cell.v_cart_mm_per_s) >
-                         slicer::kSpeedDeviation * cell.v_cart_mm_per_s) {
-      r.speed.add(i, "deposits at " + fmt_fixed(p.speed_mm_per_s, 3) +
-                         " mm/s, the cell's v_cart is " + fmt_fixed(cell.v_cart_mm_per_s, 3) +
+    const double planned = p.extrude ? cell.v_cart_mm_per_s : cell.travel_speed_mm_per_s;
+    if (std::abs(p.speed_mm_per_s - planned) > slicer::kSpeedDeviation * planned) {
+      r.speed.add(i, std::string(p.extrude ? "deposits" : "travels") + " at " +
+                         fmt_fixed(p.speed_mm_per_s, 3) + " mm/s, the cell's " +
+                         (p.extrude ? "v_cart" : "travel speed") + " is " + fmt_fixed(planned, 3) +
                          " mm/s");
     }
+  }
+}
+
+// The cells the reader does not keep or reads loosely: index, extrude, layer, lap, feature.
+struct RawRow {
+  std::string_view index, extrude, layer, lap, feature;
+};
+
+std::vector<RawRow> raw_rows(std::string_view text) {
+  std::vector<RawRow> out;
+  std::size_t pos = text.find('\n');
+  while (pos != std::string_view::npos && pos < text.size()) {
+    ++pos;
+    std::size_t nl = text.find('\n', pos);
+    std::string_view line = text.substr(pos, nl == std::string_view::npos ? nl : nl - pos);
+    pos = nl;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (line.empty()) continue;
+    std::string_view cells[14];
+    std::size_t start = 0;
+    for (int c = 0; c < 14; ++c) {
+      const std::size_t comma = line.find(',', start);
+      cells[c] = line.substr(start, comma == std::string_view::npos ? comma : comma - start);
+      start = comma == std::string_view::npos ? line.size() : comma + 1;
+    }
+    out.push_back({cells[0], cells[10], cells[11], cells[12], cells[13]});
+  }
+  return out;
+}
+
+// A whole number written as one ("12", not "12.0" or "1e1"), or nullopt.
+std::optional<long long> whole(std::string_view cell) {
+  long long v = 0;
+  const auto r = std::from_chars(cell.data(), cell.data() + cell.size(), v);
+  if (r.ec != std::errc() || r.ptr != cell.data() + cell.size()) return std::nullopt;
+  return v;
+}
+
+// Indices 0, 1, 2, ...; layers from 0 up by one; laps from 0 up by one, a new one at every
+// layer; every lap turning one way as the planner splits them (laps.h); extrude 1 exactly on
+// rows with a deposit feature. One finding where a sequence breaks, not on every later row.
+void check_numbering(const std::vector<RawRow>& raw, const std::vector<slicer::PosePoint>& rows,
+                     PoseCheckReport& r) {
+  long long prev_index = -1;
+  for (std::size_t i = 0; i < raw.size() && i < rows.size(); ++i) {
+    const auto index = whole(raw[i].index);
+    if (!index) {
+      r.numbering.add(i, "index '" + std::string(raw[i].index) + "' is not a whole number");
+    } else {
+      if (*index != prev_index + 1) {
+        r.numbering.add(i, "index " + std::to_string(*index) + " after " +
+                               std::to_string(prev_index) +
+                               ": rows are numbered 0, 1, 2, ... (a row deleted, duplicated or "
+                               "moved)");
+      }
+      prev_index = *index;
+    }
+    for (const auto& [name, cell] :
+         {std::pair{"layer", raw[i].layer}, std::pair{"lap", raw[i].lap}}) {
+      const auto v = whole(cell);
+      if (!v || *v < 0 || *v > std::numeric_limits<int>::max()) {
+        r.numbering.add(
+            i, std::string(name) + " '" + std::string(cell) + "' is not a whole number >= 0");
+      }
+    }
+    const bool travel = raw[i].feature == "travel";
+    if (rows[i].extrude == travel) {
+      r.extrusion.add(i, std::string("extrude ") + (rows[i].extrude ? "1" : "0") +
+                             " on a row whose feature is " + std::string(raw[i].feature));
+    }
+    if (i == 0) {
+      if (rows[0].layer != 0 || rows[0].lap != 0)
+        r.numbering.add(0, "the first row is in layer " + std::to_string(rows[0].layer) + ", lap " +
+                               std::to_string(rows[0].lap) + ": both start at 0");
+      if (rows[0].extrude) r.extrusion.add(0, "the first row deposits, from nowhere");
+      continue;
+    }
+    const auto& a = rows[i - 1];
+    const auto& b = rows[i];
+    if (b.layer != a.layer && b.layer != a.layer + 1) {
+      r.numbering.add(i, "layer " + std::to_string(b.layer) + " after layer " +
+                             std::to_string(a.layer) + ": layers go up by one");
+    }
+    if (b.lap != a.lap && b.lap != a.lap + 1) {
+      r.numbering.add(i, "lap " + std::to_string(b.lap) + " after lap " + std::to_string(a.lap) +
+                             ": laps go up by one");
+    } else if (b.layer != a.layer && b.lap == a.lap) {
+      r.numbering.add(i, "layer " + std::to_string(b.layer) + " starts inside lap " +
+                             std::to_string(b.lap) + ": every layer starts a lap");
+    }
+  }
+  // Laps as the planner splits them from the turns: each turns the workpiece one way.
+  if (r.numbering.total != 0) return;  // the split needs layers in order
+  // The split costs a pass over a layer per lap: bound it by the turn's reversals first.
+  double work = 0.0;
+  std::size_t reversals = 0;
+  for (std::size_t b = 0; b < rows.size();) {
+    std::size_t e = b;
+    while (e + 1 < rows.size() && rows[e + 1].layer == rows[b].layer) ++e;
+    double hi = rows[b].turn_rad, lo = hi;
+    int dir = 0;
+    std::size_t n = 0;
+    for (std::size_t i = b; i <= e; ++i) {
+      const double t = rows[i].turn_rad;
+      if (dir >= 0) {
+        hi = std::max(hi, t);
+        if (hi - t > kLapSlackRad) ++n, dir = -1, lo = t;
+      } else {
+        lo = std::min(lo, t);
+        if (t - lo > kLapSlackRad) ++n, dir = 1, hi = t;
+      }
+    }
+    reversals += n;
+    work += static_cast<double>(n + 2) * static_cast<double>(e - b + 1);
+    b = e + 1;
+  }
+  if (work > kMaxLapWork) {
+    r.numbering.add(0, "the turn reverses " + std::to_string(reversals) +
+                           " times: laps are not checked past " +
+                           slicer::short_number(kMaxLapWork) + " steps of work");
+    return;
+  }
+  slicer::PoseProgram program;
+  program.points = rows;
+  assign_laps(program);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const int expected = program.points[i].lap;
+    if (rows[i].lap == expected) continue;
+    if (i > 0 && rows[i - 1].lap != program.points[i - 1].lap) continue;  // same run
+    const auto& lap = program.laps[static_cast<std::size_t>(expected)];
+    r.numbering.add(i, "lap " + std::to_string(rows[i].lap) + ", but the turns make this row lap " +
+                           std::to_string(expected) + " (turning " +
+                           (lap.direction > 0 ? "forward" : "back") + " from row " +
+                           std::to_string(lap.first) + " to " + std::to_string(lap.last) + ")");
   }
 }
 
@@ -139,6 +312,10 @@ PoseCheckReport check_pose_csv(std::string_view text, const std::string& file,
                      "kuka-iiwa14-wasp-cylinder)");
   }
   std::vector<slicer::PosePoint> rows = machines::read_pose_csv(text, file);
+  if (rows.empty()) {
+    throw InputError("input = " + file +
+                     ": no poses (a pose CSV has one row per pose after its header)");
+  }
   PoseCheckReport r;
   r.kind = "pose CSV";
   r.machine = m.name;
@@ -153,6 +330,7 @@ PoseCheckReport check_pose_csv(std::string_view text, const std::string& file,
     p.turn_rad = turn;
     samples.push_back({p.layer, p.extrude, p.contact_mm, i});
   }
+  check_numbering(raw_rows(text), rows, r);
   check_on_cylinder(samples, slicer::kGcodeResolutionMm, r);
   r.joints = machines::analyse_joints(machines::lbr_iiwa_14_r820(m.robot), m.robot, rows);
   r.joints_checked = true;
@@ -241,6 +419,9 @@ nlohmann::json to_json(const PoseCheckReport& r) {
                       {"off_surface", findings_json(r.off_surface)},
                       {"speed", findings_json(r.speed)},
                       {"outside", findings_json(r.outside)},
+                      {"numbering", findings_json(r.numbering)},
+                      {"quaternions", findings_json(r.quaternions)},
+                      {"extrusion", findings_json(r.extrusion)},
                       {"parse_issues", findings_json(r.parse)}};
   if (r.joints_checked) j["joints"] = joints_json(r.joints);
   return j;
@@ -275,6 +456,10 @@ std::string to_text(const PoseCheckReport& r) {
   list_text("deposits off their layer's offset surface", at, r.off_surface, out);
   list_text("speed deviations", at, r.speed, out);
   list_text("moves outside the machine's envelope", at, r.outside, out);
+  list_text("numbering (indices, layers, laps and their turn direction)", at, r.numbering, out);
+  list_text("quaternions that are not unit", at, r.quaternions, out);
+  list_text("deposits the file contradicts (extrude flag, feature, ink per mm)", at, r.extrusion,
+            out);
   list_text("problems in the file", at, r.parse, out);
   if (r.joints_checked) out += joints_text(r.joints);
   out += r.ok() ? "check: OK\n" : "check: FAILED\n";

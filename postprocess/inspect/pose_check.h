@@ -43,6 +43,10 @@ struct PoseCheckReport {
   std::size_t rows = 0;  // poses, or moves
   std::vector<PoseLayerCheck> layers;
   PoseFindings off_tip, normals, off_surface, speed, outside, parse;
+  // What the program promises about itself: consecutive indices, layer and lap numbering,
+  // turn direction per lap (numbering); unit quaternions (quaternions); deposits flagged as the
+  // feature and ink say (extrusion: the extrude flag against the feature, E per mm).
+  PoseFindings numbering, quaternions, extrusion;
   bool joints_checked = false;
   machines::JointReport joints;
 
@@ -63,7 +67,8 @@ PoseCheckReport check_rotary_gcode(std::string_view text, const std::string& fil
 nlohmann::json to_json(const PoseCheckReport& r);
 std::string to_text(const PoseCheckReport& r);
 
-// Shared by both checks: deposit radius per layer, strands and their contacts on the cylinder.
+// Shared by both checks: deposit radius per layer, strands and their contacts on the cylinder;
+// a deposit must start and end on its layer's offset surface.
 void check_on_cylinder(const std::vector<CylinderSample>& samples, double touch_mm,
                        PoseCheckReport& report);
 

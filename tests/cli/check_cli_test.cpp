@@ -3,6 +3,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "tests/support/cli_runner.h"
 
@@ -153,6 +154,149 @@ TEST(CheckCliRules, InchFileIsConvertedAndNotedNotFailed) {
   ASSERT_EQ(j["notes"].size(), 1u);
   EXPECT_NE(j["notes"][0]["what"].get<std::string>().find("G20"), std::string::npos);
   EXPECT_NEAR(j["layers"][0]["z_mm"].get<double>(), 0.508, 1e-9);
+}
+
+// A Vitaprint-style bioprinter scaffold (issue 19): no E, each layer raised by
+// G1 Z[#<_z> + 0.2]; five layers of a log-pile, each a serpentine of 5 bars that never
+// crosses itself (bars along X, then along Y, ...). Written by hand for this test.
+std::string vitaprint_scaffold() {
+  std::string g = "%\n;Set X0Y0.\nG92\tX0\tY0\n;Go to Z0 and set feedrate.\nG1\tZ0.2\tF300\n";
+  const char* along_x = "G1 X8 Y0\nG1 Y2\nG1 X0\nG1 Y4\nG1 X8\nG1 Y6\nG1 X0\nG1 Y8\nG1 X8\n";
+  const char* along_y = "G1 Y0\nG1 X6\nG1 Y8\nG1 X4\nG1 Y0\nG1 X2\nG1 Y8\nG1 X0\nG1 Y0\n";
+  for (int k = 0; k < 5; ++k) {
+    if (k > 0) g += "G1\tZ[#<_z> +0.2]\n";
+    g += k % 2 == 0 ? along_x : along_y;
+  }
+  return g + "%\n";
+}
+
+TEST(CheckCliDialects, AVitaprintScaffoldChecksAsItsFiveLayersWithoutCrossings) {
+  const auto dir = fresh_dir("check-vitaprint");
+  write(dir + "/scaffold.gcode", vitaprint_scaffold());
+  const auto r = run_strand("check scaffold.gcode --json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["layers"].size(), 5u);
+  for (std::size_t k = 0; k < 5; ++k) {
+    EXPECT_NEAR(j["layers"][k]["z_mm"].get<double>(), 0.2 * (k + 1), 1e-9);
+    EXPECT_EQ(j["layers"][k]["strands"].get<int>(), 1);
+  }
+  EXPECT_EQ(j["crossings"].get<int>(), 0);
+  EXPECT_TRUE(j["parse_issues"].empty());
+}
+
+TEST(CheckCliDialects, DivisionByZeroAndAnEndlessLoopExitTwoNamingTheLine) {
+  const auto dir = fresh_dir("check-ngc-bad");
+  write(dir + "/div.gcode", "G1 X1 Y1 Z0.2\n#<layers> = 0\nG1 Z[1 / #<layers>]\n");
+  expect_input_error(run_strand("check div.gcode", dir),
+                     "input = div.gcode: line 3: division by zero");
+  write(dir + "/loop.gcode", "G1 X0 Z0.2\no10 while [1 GT 0]\nG1 X[#<_x> + 1]\no10 endwhile\n");
+  expect_input_error(run_strand("check loop.gcode", dir), "line 2: this O-word loop");
+}
+
+TEST(CheckCliDialects, UnsupportedIsNamedOnceAndAMillingProgramIsNamed) {
+  const auto dir = fresh_dir("check-ngc-unsupported");
+  write(dir + "/sub.gcode", "G1 X1 Y0 Z0.2\nG1 X2\no<prime> call\nG1 Z0.4\nG1 X1 Y1\n");
+  const auto r = run_strand("check sub.gcode", dir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("unsupported: O-word call of o<prime>"), std::string::npos) << r.out;
+  write(dir + "/mill.ngc", "G21 G90\nM3 S10000\nG0 Z5\nG0 X0 Y0\nG1 Z-2 F100\nG1 X30\nM5\n");
+  const auto m = run_strand("check mill.ngc", dir);
+  EXPECT_EQ(m.exit_code, 1) << m.err;
+  EXPECT_NE(m.out.find("milling program"), std::string::npos) << m.out;
+}
+
+TEST(CheckCliDialects, AFileWithoutMovesExitsTwoAsPreviewDoes) {
+  const auto dir = fresh_dir("check-no-moves");
+  write(dir + "/empty.gcode", "; nothing here\nM84\n");
+  expect_input_error(run_strand("check empty.gcode", dir), "input = empty.gcode: no moves");
+  expect_input_error(run_strand("preview empty.gcode -o e.png", dir), "input = empty.gcode");
+}
+
+// Curved files edited after they were written (issue 24): each fails with the row or line.
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string l; std::getline(in, l);) out.push_back(l);
+  return out;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const auto& l : lines) out += l + "\n";
+  return out;
+}
+
+TEST(CheckCliCurved, TamperedPoseCsvFailsNamingTheRow) {
+  const auto dir = fresh_dir("check-pose-tamper");
+  ASSERT_EQ(run_strand("missing-rib --nozzle 1.2 --rib 6 --rows 4 --cols 8 --layers 3 "
+                       "--substrate cylinder --substrate-radius 20 --substrate-length 80 "
+                       "--machine kuka-iiwa14-wasp-cylinder -o p.csv",
+                       dir)
+                .exit_code,
+            0);
+  const std::string cell = " --machine kuka-iiwa14-wasp-cylinder";
+  EXPECT_EQ(run_strand("check p.csv" + cell, dir).exit_code, 0);
+  auto rows = lines_of(slurp(dir + "/p.csv"));
+  auto deleted = rows;
+  deleted.erase(deleted.begin() + 501);  // data row 500
+  write(dir + "/deleted.csv", joined(deleted));
+  const auto d = run_strand("check deleted.csv" + cell, dir);
+  EXPECT_EQ(d.exit_code, 1) << d.err;
+  EXPECT_NE(d.out.find("row 500: index 501 after 499"), std::string::npos) << d.out;
+  auto scaled = rows;  // the quaternion of data row 700 times 1.001
+  std::vector<std::string> cells;
+  std::istringstream in(scaled[701]);
+  for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
+  for (int c = 5; c <= 8; ++c) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.9f", std::stod(cells[c]) * 1.001);
+    cells[c] = buf;
+  }
+  scaled[701].clear();
+  for (std::size_t c = 0; c < cells.size(); ++c) scaled[701] += (c ? "," : "") + cells[c];
+  write(dir + "/scaled.csv", joined(scaled));
+  const auto q = run_strand("check scaled.csv" + cell, dir);
+  EXPECT_EQ(q.exit_code, 1) << q.err;
+  EXPECT_NE(q.out.find("row 700: quaternion of norm 1.001"), std::string::npos) << q.out;
+  write(dir + "/header.csv", rows[0] + "\n");
+  expect_input_error(run_strand("check header.csv" + cell, dir), "input = header.csv: no poses");
+}
+
+TEST(CheckCliCurved, TamperedRotaryGcodeFailsNamingTheLine) {
+  const auto dir = fresh_dir("check-rotary-tamper");
+  ASSERT_EQ(run_strand("job " + std::string(STRAND_SOURCE_DIR) +
+                           "/samples/scaffold-cylinder-rotary.json -o r.gcode",
+                       dir)
+                .exit_code,
+            0);
+  EXPECT_EQ(run_strand("check r.gcode", dir).exit_code, 0);
+  auto lines = lines_of(slurp(dir + "/r.gcode"));
+  std::size_t at = 0;  // the 50th deposit after ;LAYER:1
+  for (std::size_t i = 0, n = 0, seen = 0; i < lines.size() && !at; ++i) {
+    seen = seen || lines[i] == ";LAYER:1";
+    if (seen && lines[i].rfind("G1 ", 0) == 0 && lines[i].find(" E") != std::string::npos &&
+        ++n == 50)
+      at = i;
+  }
+  ASSERT_GT(at, 0u);
+  auto fast = lines;
+  const std::size_t f = fast[at].find(" F");
+  fast[at] = fast[at].substr(0, f + 2) + std::to_string(5 * std::stod(fast[at].substr(f + 2)));
+  write(dir + "/fast.gcode", joined(fast));
+  const auto r = run_strand("check fast.gcode", dir);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("line " + std::to_string(at + 1) + ": deposits at"), std::string::npos)
+      << r.out;
+  auto swapped = lines;
+  std::swap(swapped[at], swapped[at + 1]);
+  write(dir + "/swapped.gcode", joined(swapped));
+  EXPECT_EQ(run_strand("check swapped.gcode", dir).exit_code, 1);
+  std::vector<std::string> header;
+  for (const auto& l : lines)
+    if (l.rfind(";", 0) == 0 && l.rfind(";LAYER", 0) != 0) header.push_back(l);
+  write(dir + "/header.gcode", joined(header));
+  expect_input_error(run_strand("check header.gcode", dir), "input = header.gcode: no moves");
 }
 
 struct BadCase {

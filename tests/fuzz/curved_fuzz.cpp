@@ -1,6 +1,7 @@
 // Fuzz target: any bytes as the curved-substrate files `strand check` and `strand preview`
 // read — a robot cell's pose CSV and a rotary printer's 4-axis G-code — checked against their
-// shipped machines and cut into preview samples.
+// shipped machines (and, for rotary files, against the machine their header names) and cut
+// into preview samples. A tampered file must fail with reasons, never crash or hang.
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
@@ -21,7 +22,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                              ? post::check_rotary_gcode(text, "fuzz.gcode", &rotary)
                                              : post::check_pose_csv(text, "fuzz.csv", robot);
     slicer::dump_json(post::to_json(report));  // as `strand check --json` prints it
+    post::to_text(report);
   } catch (const InputError&) {
+  }
+  if (post::is_rotary_gcode(text)) {
+    try {
+      post::to_text(post::check_rotary_gcode(text, "fuzz.gcode", nullptr));
+    } catch (const InputError&) {
+    }
   }
   try {
     post::read_curved_part(text, post::is_rotary_gcode(text) ? "fuzz.gcode" : "fuzz.csv");

@@ -1,7 +1,8 @@
 // Fuzz target: any bytes as G-code, read and checked as `strand check` does (against the
 // delta; against a polargraph, with pen commands and Z lifts read and axes mapped to paper;
 // without a machine, rules and pen from the file alone) and cut into a preview scene as
-// `strand preview` does.
+// `strand preview` does. RS274NGC files (parameters, expressions, O-word loops) are read with
+// their work bounded; errors in them are InputError (seeds/gcode_fuzz/expressions.ngc).
 #include <cstddef>
 #include <cstdint>
 #include <string_view>

@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include "machines/profile.h"
+#include "slicer/input_error.h"
 
 namespace strand::post {
 namespace {
 
 TEST(GcodeParser, EGrowthMarksDepositsInRelativeAndAbsoluteModes) {
-  const auto r = parse_gcode("G90\nM82\nG1 X1 Y0 Z0.2 E0.5\nG1 X2 E0.5\nG1 X3 E1.0\nM83\nG1 X4 E0.2\n");
+  const auto r =
+      parse_gcode("G90\nM82\nG1 X1 Y0 Z0.2 E0.5\nG1 X2 E0.5\nG1 X3 E1.0\nM83\nG1 X4 E0.2\n");
   ASSERT_EQ(r.program.moves.size(), 4u);
   EXPECT_EQ(r.program.moves[0].kind, slicer::MoveKind::Deposit);
   EXPECT_EQ(r.program.moves[1].kind, slicer::MoveKind::Travel);  // E unchanged
@@ -24,7 +26,8 @@ TEST(GcodeParser, WithoutEWordsG1DepositsAndG0Travels) {
 }
 
 TEST(GcodeParser, LayerMarkersDefineLayers) {
-  const auto r = parse_gcode(";LAYER_CHANGE\n;Z:0.3\n;LAYER:0\nG1 X1 Z0.3\n;LAYER_CHANGE\n;Z:0.6\n;LAYER:1\nG1 X2 Z0.6\n");
+  const auto r = parse_gcode(
+      ";LAYER_CHANGE\n;Z:0.3\n;LAYER:0\nG1 X1 Z0.3\n;LAYER_CHANGE\n;Z:0.6\n;LAYER:1\nG1 X2 Z0.6\n");
   ASSERT_EQ(r.program.layers.size(), 2u);
   EXPECT_DOUBLE_EQ(r.program.layers[1].z_mm, 0.6);
   EXPECT_EQ(r.program.moves[1].layer, 1);
@@ -172,6 +175,174 @@ TEST(GcodeParserPen, ZLiftDrawingsReadFromTheFileOrTheProfile) {
       << drawing.notes[0].what;
   const auto z = machines::load_profile("xy-plotter-z");
   EXPECT_EQ(kinds(parse_drawing(g, pen_reading_from(z))), kinds(drawing));
+}
+
+// --- RS274NGC dialects (issue 19) ---
+
+// A Vitaprint-style log-pile scaffold: no E, every G1 in XY deposits, and each layer is raised
+// by an expression on the current position, G1 Z[#<_z> + #<layer_h>]. Layer k runs its 5 bars
+// along X (k even) or Y (k odd) as one serpentine from where the layer below ended.
+std::string log_pile(int layers) {
+  std::string g = "%\n(log-pile, 5 bars of 8 mm, 2 mm pitch)\n#<layer_h> = 0.2\n#<pitch> = 2\n";
+  g += "G92\tX0\tY0\nG1\tZ0.2\tF300\n";
+  for (int k = 0; k < layers; ++k) {
+    if (k > 0) g += "G1 Z[#<_z> + #<layer_h>] (next layer)\n";
+    for (int j = 0; j < 5; ++j) {
+      // even layers: bars along X at y = 2j; odd layers: bars along Y at x = 8 - 2j
+      const bool out = j % 2 == 0;
+      if (k % 2 == 0) {
+        g += "G1 X" + std::string(out ? "[4 * #<pitch>]" : "0") + " Y[" + std::to_string(j) +
+             " * #<pitch>]\n";
+        if (j < 4) g += "G1 Y[#<_y> + #<pitch>]\n";
+      } else {
+        g += "G1 Y" + std::string(out ? "0" : "8") + " X[8 - " + std::to_string(j) +
+             " * #<pitch>]\n";
+        if (j < 4) g += "G1 X[#<_x> - #<pitch>]\n";
+      }
+    }
+  }
+  return g + "%\n";
+}
+
+TEST(GcodeDialects, AVitaprintLogPileReadsAsItsLayers) {
+  const auto r = parse_gcode(log_pile(5));
+  EXPECT_TRUE(r.issues.empty()) << r.issues[0].what;
+  ASSERT_EQ(r.program.layers.size(), 5u);
+  for (int k = 0; k < 5; ++k) EXPECT_NEAR(r.program.layers[k].z_mm, 0.2 * (k + 1), 1e-9);
+  // Layer 1 runs along Y: its first bar ends at (8, 0), its second starts at x = 6.
+  std::vector<slicer::Vec3> layer1;
+  for (const auto& mv : r.program.moves)
+    if (mv.layer == 1 && mv.kind == slicer::MoveKind::Deposit) layer1.push_back(mv.end_mm);
+  ASSERT_GE(layer1.size(), 2u);
+  EXPECT_NEAR(layer1[0].x(), 8.0, 1e-9);
+  EXPECT_NEAR(layer1[0].y(), 0.0, 1e-9);
+  EXPECT_NEAR(layer1[1].x(), 6.0, 1e-9);
+}
+
+TEST(GcodeDialects, ParametersAreSetAfterTheLineReadsThem) {
+  // RS274NGC: every read on a line sees the values from before it.
+  const auto r = parse_gcode("#1 = 5\n#1 = [#1 + 1] G1 X#1\nG1 X#1\n");
+  ASSERT_EQ(r.program.moves.size(), 2u);
+  EXPECT_DOUBLE_EQ(r.program.moves[0].end_mm.x(), 5.0);
+  EXPECT_DOUBLE_EQ(r.program.moves[1].end_mm.x(), 6.0);
+}
+
+TEST(GcodeDialects, CurrentPositionFollowsUnits) {
+  const auto r = parse_gcode("G20\nG1 X1\nG1 X[#<_x> + 1]\n");  // inches: _x is 1, not 25.4
+  ASSERT_EQ(r.program.moves.size(), 2u);
+  EXPECT_NEAR(r.program.moves[1].end_mm.x(), 50.8, 1e-9);
+}
+
+TEST(GcodeDialects, OWordSubroutinesAndLoopsRun) {
+  const std::string g =
+      "o100 sub\n"
+      "  G1 X[#1] Y#2\n"
+      "o100 endsub\n"
+      "#<n> = 0\n"
+      "o200 while [#<n> LT 3]\n"
+      "  o100 call [#<n> * 10] [1]\n"
+      "  #<n> = [#<n> + 1]\n"
+      "o200 endwhile\n"
+      "o300 repeat [2]\n"
+      "  G1 Y[#<_y> + 1]\n"
+      "o300 endrepeat\n"
+      "o400 if [#<n> EQ 3]\n"
+      "  G1 X99\n"
+      "o400 else\n"
+      "  G1 X-99\n"
+      "o400 endif\n"
+      "o500 do\n"
+      "  #<n> = [#<n> - 1]\n"
+      "  o510 if [#<n> EQ 1]\n"
+      "    o500 break\n"
+      "  o510 endif\n"
+      "o500 while [#<n> GT 0]\n"
+      "G1 X#<n>\n";
+  const auto r = parse_gcode(g);
+  ASSERT_TRUE(r.issues.empty()) << r.issues[0].what;
+  std::vector<double> xs, ys;
+  for (const auto& mv : r.program.moves) xs.push_back(mv.end_mm.x()), ys.push_back(mv.end_mm.y());
+  EXPECT_EQ(xs, (std::vector<double>{0, 10, 20, 20, 20, 99, 1}));
+  EXPECT_EQ(ys, (std::vector<double>{1, 1, 1, 2, 3, 3, 3}));
+  EXPECT_EQ(r.move_lines[1], 2);  // the move's line is the subroutine's line
+}
+
+TEST(GcodeDialects, DivisionByZeroNamesItsLine) {
+  try {
+    parse_gcode("G1 X1\n#<h> = 0\nG1 Z[1 / #<h>]\n");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3: division by zero"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(GcodeDialects, AnUnboundedLoopIsRefusedWithItsLine) {
+  try {
+    parse_gcode("G1 X0\no1 while [1]\nG1 X[#<_x> + 1]\no1 endwhile\n");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2: this O-word loop"), std::string::npos)
+        << e.what();
+  }
+  // Recursion without end is bounded by the call depth.
+  EXPECT_THROW(parse_gcode("o1 sub\no1 call\no1 endsub\no1 call\n"), InputError);
+  // Blocks that do not match are bad input too.
+  EXPECT_THROW(parse_gcode("o1 while [1]\nG1 X1\n"), InputError);
+  EXPECT_THROW(parse_gcode("o1 endif\n"), InputError);
+}
+
+TEST(GcodeDialects, WhatIsNotSupportedIsNamedOnceAndNothingAfterIsGuessed) {
+  const auto r = parse_gcode("G1 X1 Z0.2\nG1 X2\no<purge> call\nG1 Z0.4\nG1 X3\nG1 X[#5399]\n");
+  ASSERT_EQ(r.issues.size(), 1u);
+  EXPECT_EQ(r.issues[0].line, 3);
+  EXPECT_NE(r.issues[0].what.find("unsupported: O-word call of o<purge>"), std::string::npos)
+      << r.issues[0].what;
+  EXPECT_NE(r.issues[0].what.find("at line 3"), std::string::npos);
+  EXPECT_EQ(r.program.moves.size(), 2u);
+  EXPECT_EQ(r.program.layers.size(), 1u);
+  const auto probe = parse_gcode("G1 X1\nG1 X[#5061]\nG1 X2\n");  // a probe result
+  ASSERT_EQ(probe.issues.size(), 1u);
+  EXPECT_NE(probe.issues[0].what.find("unsupported: system parameter #5061 at line 2"),
+            std::string::npos);
+}
+
+TEST(GcodeDialects, VendorLinesWithBracketsStayAsTheyWere) {
+  const auto r = parse_gcode(
+      "EXCLUDE_OBJECT_DEFINE NAME=a CENTER=1,1 POLYGON=[[0,0],[1,1]]\nM117 [50%]\nG1 X1\n");
+  EXPECT_TRUE(r.issues.empty());
+  EXPECT_EQ(r.program.moves.size(), 1u);
+  // Text that is not G-code (a job's JSON) is not read as expressions either.
+  EXPECT_NO_THROW(parse_gcode("{\n  \"size\": [36, 36],\n  \"layers\": 3\n}\n"));
+  // RepRapFirmware's own expressions stay a malformed number, as before (not exit 2).
+  const auto rrf = parse_gcode("G1 X1\nG1 X{move.axes[0].max - 10}\n");
+  ASSERT_EQ(rrf.issues.size(), 1u);
+  EXPECT_EQ(rrf.issues[0].line, 2);
+}
+
+TEST(GcodeDialects, ValveOutputsDepositWhenTheProfileSwitchesThem) {
+  auto m = machines::load_profile("bioprinter-xyz-reprap");
+  m.deposition.on_gcode = {"M62 P2 ; valve open"};
+  m.deposition.off_gcode = {"M63 P2 ; valve closed"};
+  const std::string g = "G1 X1 Y0\nM62 P2\nG1 X5\nM63 P2\nG1 X9\nM62 P1\nG1 X12\n";
+  const auto r = parse_gcode(g, pen_reading_from(m));
+  ASSERT_EQ(r.program.moves.size(), 4u);
+  EXPECT_EQ(r.program.moves[0].kind, slicer::MoveKind::Travel);   // closed at the start
+  EXPECT_EQ(r.program.moves[1].kind, slicer::MoveKind::Deposit);  // M62 P2
+  EXPECT_EQ(r.program.moves[2].kind, slicer::MoveKind::Travel);   // M63 P2
+  EXPECT_EQ(r.program.moves[3].kind, slicer::MoveKind::Travel);   // another output
+  // Without the profile every G1 deposits, as before.
+  EXPECT_EQ(parse_gcode(g).program.moves[2].kind, slicer::MoveKind::Deposit);
+}
+
+TEST(GcodeDialects, AMillingProgramIsNamed) {
+  const auto r = parse_gcode("G21\nM3 S12000\nG0 Z5\nG0 X10 Y10\nG1 Z-1.5 F100\nG1 X20\nM5\n");
+  ASSERT_EQ(r.issues.size(), 1u);
+  EXPECT_EQ(r.issues[0].line, 5);
+  EXPECT_NE(r.issues[0].what.find("milling program"), std::string::npos);
+  // A GRBL dispenser or laser (M3 S below 1000) or a pen pressing to Z -0.02 is not milling.
+  EXPECT_TRUE(parse_gcode("M3 S255\nG1 X1 Z-1\n").issues.empty());
+  EXPECT_TRUE(parse_gcode("M3 S12000\nG1 X1 Z-0.02\n").issues.empty());
 }
 
 }  // namespace
