@@ -24,7 +24,7 @@ namespace strand::slicer {
 inline constexpr std::size_t kMaxCssBytes = std::size_t{1} << 20;  // all sheets together
 inline constexpr std::size_t kMaxCssRules = 10'000;           // selectors, each of a group counted
 inline constexpr std::size_t kMaxCssChain = 32;               // compound selectors in one selector
-inline constexpr std::size_t kMaxCssMatchSteps = 50'000'000;  // compound tests per drawing
+inline constexpr std::size_t kMaxCssMatchSteps = 20'000'000;  // compound tests per drawing
 
 struct CssDeclaration {
   std::string property;  // lower case: "fill", "font-size"

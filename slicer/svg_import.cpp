@@ -189,7 +189,12 @@ std::map<std::string, std::string> Importer::properties(const pugi::xml_node& n)
   for (const char* k : kPresentation) {
     if (const auto a = n.attribute(k)) p[k] = trim(a.value());
   }
-  const CssMatch m = cascade ? cascade->matching(n) : CssMatch{};
+  CssMatch m;
+  try {
+    if (cascade) m = cascade->matching(n);
+  } catch (const InputError& e) {
+    throw InputError(origin + ": " + e.what());
+  }
   for (const CssDeclaration* d : m.normal) p[d->property] = d->value;
   const char* style = n.attribute("style").value();
   const std::vector<CssDeclaration> own =
@@ -435,9 +440,12 @@ void Importer::text(const pugi::xml_node& n, const TextStyle& parent_text, const
         origin, kMaxSvgTextChars - text_chars);
   } catch (const InputError& e) {
     if (std::string(e.what()).find("more than") != std::string::npos) throw;  // a limit
-    throw BadValue{describe(n) + ": " +
-                   printable(std::string(e.what()).substr(origin.size() + 2), 60) +
-                   " (element skipped)"};
+    // "<text> dy = ...", "<tspan> dy = ..." after the file name
+    std::string what = e.what();
+    if (what.rfind(origin + ": ", 0) == 0) what = what.substr(origin.size() + 2);
+    const std::string msg = printable(what, 60);
+    const bool own = msg.rfind("<text> ", 0) == 0;
+    throw BadValue{describe(n) + (own ? msg.substr(6) : " " + msg) + " (element skipped)"};
   }
   for (const auto& b : bad) note("<tspan> in " + describe(n) + " " + b + ": not valid (left out)");
   text_chars += t.chars.size();

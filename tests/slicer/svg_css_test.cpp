@@ -221,7 +221,7 @@ TEST(SvgCss, BacktrackingMatchesAreBounded) {
                "t.svg");
     ADD_FAILURE() << "accepted";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("CSS selectors need more than 50000000 element tests"),
+    EXPECT_NE(std::string(e.what()).find("CSS selectors need more than 20000000 element tests"),
               std::string::npos)
         << e.what();
   }
