@@ -6,6 +6,7 @@
 #include <ft2build.h>
 #include FT_FREETYPE_H
 #include FT_OUTLINE_H
+#include FT_TRUETYPE_TABLES_H
 
 #include <algorithm>
 #include <cctype>
@@ -184,6 +185,15 @@ Font load_outline_font(const std::string& family, const std::string& weight, con
               (sty ? " " + std::string(reinterpret_cast<const char*>(sty)) : "");
   font.single_stroke = false;
   font.units_per_em = face->units_per_EM > 0 ? face->units_per_EM : 1000.0;
+  const double em = font.units_per_em;
+  font.underline_thickness = face->underline_thickness > 0 ? face->underline_thickness : 0.05 * em;
+  font.underline_position = face->underline_position != 0 ? face->underline_position : -0.1 * em;
+  font.overline_position = (face->ascender > 0 ? face->ascender : 0.8 * em) - font.underline_thickness / 2;
+  font.strikeout_position = 0.25 * em;
+  if (const auto* os2 = static_cast<const TT_OS2*>(FT_Get_Sfnt_Table(face.get(), FT_SFNT_OS2));
+      os2 != nullptr && os2->version != 0xFFFF && os2->yStrikeoutSize > 0) {
+    font.strikeout_position = os2->yStrikeoutPosition - os2->yStrikeoutSize / 2.0;  // top -> centre
+  }
   for (char32_t c : chars) {
     if (font.glyphs.count(c)) continue;
     Glyph g = load_glyph(face.get(), c);

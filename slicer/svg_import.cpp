@@ -14,6 +14,7 @@
 
 #include "slicer/input_error.h"
 #include "slicer/params.h"
+#include "slicer/svg_css.h"
 #include "slicer/svg_entities.h"
 #include "slicer/svg_shapes.h"
 #include "slicer/svg_syntax.h"
@@ -32,6 +33,7 @@ struct Style {
   std::string stroke = "none";
   bool evenodd = false;
   bool visible = true;
+  double stroke_width = 1.0;  // user units of the element that set it
   TextStyle text;
 };
 
@@ -62,25 +64,33 @@ std::string trim(std::string_view s) {
   return std::string(s);
 }
 
-// Presentation attributes first, then the style attribute (which wins).
-std::map<std::string, std::string> properties(const pugi::xml_node& n) {
-  std::map<std::string, std::string> p;
-  for (const char* k : {"fill", "stroke", "fill-rule", "display", "visibility", "font-size",
-                        "font-family", "font-weight", "font-style", "text-anchor", "xml:space",
-                        "clip-path", "mask", "marker-start", "marker-mid", "marker-end"}) {
-    if (const auto a = n.attribute(k)) p[k] = trim(a.value());
+// Properties an SVG element may give as attributes (presentation attributes).
+constexpr const char* kPresentation[] = {"fill",           "stroke",         "fill-rule",
+                                         "display",        "visibility",     "font-size",
+                                         "font-family",    "font-weight",    "font-style",
+                                         "text-anchor",    "xml:space",      "clip-path",
+                                         "mask",           "marker-start",   "marker-mid",
+                                         "marker-end",     "stroke-width",   "text-decoration",
+                                         "baseline-shift", "letter-spacing", "word-spacing"};
+
+// A length or property value that is not valid: the element is skipped (or the property
+// left out) with a note, the rest of the drawing is drawn.
+struct BadValue {
+  std::string note;
+};
+
+// Text for a note: cut short, control and non-ASCII bytes replaced (notes reach G-code
+// comments and the summary).
+std::string printable(std::string_view v, std::size_t max = 24) {
+  std::string out(v.substr(0, max));
+  for (char& ch : out) {
+    if (static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) > 0x7e) ch = '?';
   }
-  std::string_view style = n.attribute("style").value();
-  while (!style.empty()) {
-    const auto semi = style.find(';');
-    const std::string_view decl = style.substr(0, semi);
-    const auto colon = decl.find(':');
-    if (colon != std::string_view::npos) p[trim(decl.substr(0, colon))] = trim(decl.substr(colon + 1));
-    if (semi == std::string_view::npos) break;
-    style.remove_prefix(semi + 1);
-  }
-  return p;
+  return out + (v.size() > max ? "..." : "");
 }
+
+// Distinct notes kept in the summary; more are counted under one line.
+constexpr std::size_t kMaxNotes = 20;
 
 std::string local_name(const pugi::xml_node& n) {
   std::string name = n.name();
@@ -90,9 +100,8 @@ std::string local_name(const pugi::xml_node& n) {
 
 // "<path id="leaf">" for messages (the id cut short).
 std::string describe(const pugi::xml_node& n) {
-  std::string d = "<" + local_name(n);
-  if (const auto id = n.attribute("id"))
-    d += " id=\"" + std::string(id.value()).substr(0, 40) + "\"";
+  std::string d = "<" + printable(local_name(n), 40);
+  if (const auto id = n.attribute("id")) d += " id=\"" + printable(id.value(), 40) + "\"";
   return d + ">";
 }
 
@@ -103,18 +112,30 @@ struct Importer {
   std::map<std::string, pugi::xml_node> by_id;
   SvgDrawing out;
   std::map<std::string, int> skipped;
+  std::size_t notes = 0;
+  StyleSheet sheet;
+  std::unique_ptr<CssCascade> cascade;
   std::vector<pugi::xml_node> uses;  // <use> targets being drawn, outermost first
   std::size_t elements = 0, use_copies = 0, attribute_bytes = 0, pieces = 0, text_chars = 0;
 
   [[noreturn]] void over(const std::string& what, std::size_t limit,
                          const pugi::xml_node& n) const {
     throw InputError(origin + ": " + describe(n) + ": the drawing has more than " +
-                     std::to_string(limit) + " " + what +
-                     " (the limit for one drawing)");
+                     std::to_string(limit) + " " + what + " (the limit for one drawing)");
   }
+  void note(const std::string& what) {
+    if (skipped.count(what) || ++notes <= kMaxNotes) {
+      ++skipped[what];
+    } else {
+      ++skipped["more values in error"];
+    }
+  }
+  std::map<std::string, std::string> properties(const pugi::xml_node& n) const;
+  void read_sheets(const std::vector<pugi::xml_node>& styles, const pugi::xml_document& doc);
   bool enter(const pugi::xml_node& n, const Context& parent, Context& c);
   bool inherit(const pugi::xml_node& n, Context& c);
   void walk(const pugi::xml_node& n, const Context& parent);
+  void draw(const pugi::xml_node& n, const std::string& name, const Context& parent, Context& c);
   void walk_children(const pugi::xml_node& n, const Context& c) {
     for (const auto& child : n.children()) {
       if (child.type() == pugi::node_element) walk(child, c);
@@ -127,16 +148,19 @@ struct Importer {
                 std::vector<SubPath>& paths);
   void shape(const pugi::xml_node& n, const Context& c, std::vector<SubPath> paths);
   void text(const pugi::xml_node& n, const TextStyle& parent_text, const Context& c);
-  // A length in user units; "P%" is P percent of `percent_of`.
-  double len(const pugi::xml_node& n, const char* attr, double percent_of,
+  // A length attribute in user units: em and ex of the element's font-size, % of the
+  // viewport along `axis`. A value in error throws BadValue (the element is skipped).
+  double len(const pugi::xml_node& n, const char* attr, LengthAxis axis, const Context& c,
              double fallback = 0.0) const {
     const auto a = n.attribute(attr);
     if (!a) return fallback;
-    const std::string v = trim(a.value());
-    const std::string what = origin + ": " + describe(n) + " " + attr;
-    if (!v.empty() && v.back() == '%')
-      return parse_length_px(v.substr(0, v.size() - 1), what) * percent_of / 100.0;
-    return parse_length_px(v, what);
+    try {
+      return resolve_length_px(trim(a.value()), axis,
+                               LengthBasis{c.style.text.font_size, c.viewport}, attr);
+    } catch (const InputError&) {
+      throw BadValue{describe(n) + " " + attr + " = \"" + printable(a.value()) +
+                     "\": not a length (element skipped)"};
+    }
   }
 };
 
@@ -158,14 +182,57 @@ bool Importer::enter(const pugi::xml_node& n, const Context& parent, Context& c)
   return inherit(n, c);
 }
 
+// The cascade of one element: presentation attributes, sheet rules by specificity and
+// order, the style attribute, !important sheet rules, !important style declarations.
+std::map<std::string, std::string> Importer::properties(const pugi::xml_node& n) const {
+  std::map<std::string, std::string> p;
+  for (const char* k : kPresentation) {
+    if (const auto a = n.attribute(k)) p[k] = trim(a.value());
+  }
+  CssMatch m;
+  try {
+    if (cascade) m = cascade->matching(n);
+  } catch (const InputError& e) {
+    throw InputError(origin + ": " + e.what());
+  }
+  for (const CssDeclaration* d : m.normal) p[d->property] = d->value;
+  const char* style = n.attribute("style").value();
+  const std::vector<CssDeclaration> own =
+      *style ? parse_css_declarations(style) : std::vector<CssDeclaration>{};
+  for (const auto& d : own) {
+    if (!d.important) p[d.property] = d.value;
+  }
+  for (const CssDeclaration* d : m.important) p[d->property] = d->value;
+  for (const auto& d : own) {
+    if (d.important) p[d.property] = d.value;
+  }
+  return p;
+}
+
 bool Importer::inherit(const pugi::xml_node& n, Context& c) {
   const auto props = properties(n);
-  if (props.count("display") && props.at("display") == "none") return false;
-  if (props.count("fill")) c.style.fill = props.at("fill");
-  if (props.count("stroke")) c.style.stroke = props.at("stroke");
-  if (props.count("fill-rule")) c.style.evenodd = props.at("fill-rule") == "evenodd";
-  if (props.count("visibility")) c.style.visible = props.at("visibility") == "visible";
-  inherit_text_style(props, c.style.text, origin);
+  // "inherit" keeps the parent's value: every property read here is inherited in SVG or,
+  // for display, hides the element's whole subtree when none
+  const auto get = [&](const char* key) -> const std::string* {
+    const auto p = props.find(key);
+    return p == props.end() || p->second == "inherit" ? nullptr : &p->second;
+  };
+  if (const auto* v = get("display"); v && *v == "none") return false;
+  if (const auto* v = get("fill")) c.style.fill = *v;
+  if (const auto* v = get("stroke")) c.style.stroke = *v;
+  if (const auto* v = get("fill-rule")) c.style.evenodd = *v == "evenodd";
+  if (const auto* v = get("visibility")) c.style.visible = *v == "visible";
+  std::vector<std::string> bad;
+  inherit_text_style(props, c.style.text, c.viewport, bad, local_name(n) == "text");
+  if (const auto* v = get("stroke-width")) {
+    try {
+      c.style.stroke_width = resolve_length_px(
+          *v, LengthAxis::Other, LengthBasis{c.style.text.font_size, c.viewport}, "stroke-width");
+    } catch (const InputError&) {
+      bad.push_back("stroke-width = \"" + printable(*v) + "\"");
+    }
+  }
+  for (const auto& b : bad) note(describe(n) + " " + b + ": not valid (left out)");
   for (const char* ignored : {"clip-path", "mask", "marker-start", "marker-mid", "marker-end"}) {
     const auto p = props.find(ignored);
     if (p != props.end() && p->second != "none")
@@ -185,6 +252,15 @@ void Importer::walk(const pugi::xml_node& n, const Context& parent) {
   Context c;
   if (!enter(n, parent, c)) return;
   const std::string name = local_name(n);
+  try {
+    draw(n, name, parent, c);
+  } catch (const BadValue& bad) {
+    note(bad.note);
+  }
+}
+
+void Importer::draw(const pugi::xml_node& n, const std::string& name, const Context& parent,
+                    Context& c) {
   if (name == "g" || name == "a") {
     if (const auto id = n.attribute("id")) c.group_ids = prepended(*c.group_ids, id.value());
     if (std::string(n.attribute("inkscape:groupmode").value()) == "layer") {
@@ -195,8 +271,8 @@ void Importer::walk(const pugi::xml_node& n, const Context& parent) {
     walk_switch(n, c);
   } else if (name == "svg") {  // nested viewport: width and height default to 100%
     viewport(n, c,
-             Vec2(len(n, "width", c.viewport.x(), c.viewport.x()),
-                  len(n, "height", c.viewport.y(), c.viewport.y())));
+             Vec2(len(n, "width", LengthAxis::X, c, c.viewport.x()),
+                  len(n, "height", LengthAxis::Y, c, c.viewport.y())));
   } else if (name == "use") {
     use(n, c);
   } else if (name == "image" || name == "foreignObject") {
@@ -230,29 +306,38 @@ void Importer::use(const pugi::xml_node& n, Context c) {
   const pugi::xml_node target = found->second;
   if (std::find(uses.begin(), uses.end(), target) != uses.end())
     throw InputError(what + ": references form a cycle");
-  c.to_mm =
-      compose(c.to_mm, translation(Vec2(len(n, "x", c.viewport.x()), len(n, "y", c.viewport.y()))));
-  uses.push_back(target);
+  c.to_mm = compose(
+      c.to_mm, translation(Vec2(len(n, "x", LengthAxis::X, c), len(n, "y", LengthAxis::Y, c))));
   const std::string kind = local_name(target);
+  // the use's own width and height (a value in error skips the use before it is entered)
+  const auto size = [&](const char* attr, LengthAxis axis) {
+    return n.attribute(attr) ? std::optional<double>(len(n, attr, axis, c)) : std::nullopt;
+  };
+  const std::optional<double> use_w = size("width", LengthAxis::X);
+  const std::optional<double> use_h = size("height", LengthAxis::Y);
+  uses.push_back(target);
+  struct Pop {
+    std::vector<pugi::xml_node>& v;
+    ~Pop() { v.pop_back(); }
+  } pop{uses};
   if (kind == "symbol" || kind == "svg") {
-    const auto size = [&](const char* attr, double full) {
-      return n.attribute(attr) ? len(n, attr, full) : len(target, attr, full, full);
-    };
     Context t;
-    if (enter(target, c, t))
-      viewport(target, t, Vec2(size("width", c.viewport.x()), size("height", c.viewport.y())));
+    if (enter(target, c, t)) {
+      viewport(target, t,
+               Vec2(use_w ? *use_w : len(target, "width", LengthAxis::X, t, c.viewport.x()),
+                    use_h ? *use_h : len(target, "height", LengthAxis::Y, t, c.viewport.y())));
+    }
   } else {
     walk(target, c);
   }
-  uses.pop_back();
 }
 
 // A nested svg or an instantiated symbol: a new viewport of `size` (parent user units).
 void Importer::viewport(const pugi::xml_node& n, Context c, const Vec2& size) {
   if (!(size.x() > 0) || !(size.y() > 0)) return;  // SVG: a zero-sized viewport draws nothing
   if (local_name(n) == "svg") {
-    c.to_mm = compose(c.to_mm,
-                      translation(Vec2(len(n, "x", c.viewport.x()), len(n, "y", c.viewport.y()))));
+    c.to_mm = compose(
+        c.to_mm, translation(Vec2(len(n, "x", LengthAxis::X, c), len(n, "y", LengthAxis::Y, c))));
   }
   c.to_mm = compose(c.to_mm, viewport_transform(n, size.x(), size.y(), origin));
   c.viewport = view_box_size(n, origin).value_or(size);
@@ -263,8 +348,7 @@ void Importer::viewport(const pugi::xml_node& n, Context c, const Vec2& size) {
 // shapes (defs, symbol, style, metadata, gradients, clip paths: not drawn directly).
 bool Importer::geometry(const pugi::xml_node& n, const std::string& name, const Context& c,
                         std::vector<SubPath>& paths) {
-  const Vec2 vp = c.viewport;
-  const double diagonal = vp.norm() / std::sqrt(2.0);  // what percentages of radii refer to
+  constexpr LengthAxis X = LengthAxis::X, Y = LengthAxis::Y;
   const std::size_t room = kMaxSvgPieces - std::min(pieces, kMaxSvgPieces);
   if (name == "path") {
     std::string error;
@@ -276,21 +360,20 @@ bool Importer::geometry(const pugi::xml_node& n, const std::string& name, const 
     if (!error.empty()) ++skipped["path data after an error"];
   } else if (name == "rect") {
     const bool has_rx = n.attribute("rx"), has_ry = n.attribute("ry");
-    double rx = len(n, "rx", vp.x()), ry = len(n, "ry", vp.y());
+    double rx = len(n, "rx", X, c), ry = len(n, "ry", Y, c);
     if (has_rx && !has_ry) ry = rx;
     if (has_ry && !has_rx) rx = ry;
-    const double w = len(n, "width", vp.x()), h = len(n, "height", vp.y());
+    const double w = len(n, "width", X, c), h = len(n, "height", Y, c);
     if (w > 0 && h > 0)
-      paths.push_back(rect_path(len(n, "x", vp.x()), len(n, "y", vp.y()), w, h, rx, ry));
+      paths.push_back(rect_path(len(n, "x", X, c), len(n, "y", Y, c), w, h, rx, ry));
   } else if (name == "circle" || name == "ellipse") {
-    const double rx = name == "circle" ? len(n, "r", diagonal) : len(n, "rx", vp.x());
-    const double ry = name == "circle" ? rx : len(n, "ry", vp.y());
+    const double rx = name == "circle" ? len(n, "r", LengthAxis::Other, c) : len(n, "rx", X, c);
+    const double ry = name == "circle" ? rx : len(n, "ry", Y, c);
     if (rx > 0 && ry > 0)
-      paths.push_back(ellipse_path(Vec2(len(n, "cx", vp.x()), len(n, "cy", vp.y())), rx, ry));
+      paths.push_back(ellipse_path(Vec2(len(n, "cx", X, c), len(n, "cy", Y, c)), rx, ry));
   } else if (name == "line") {
     paths.push_back(polyline_path(
-        {len(n, "x1", vp.x()), len(n, "y1", vp.y()), len(n, "x2", vp.x()), len(n, "y2", vp.y())},
-        false));
+        {len(n, "x1", X, c), len(n, "y1", Y, c), len(n, "x2", X, c), len(n, "y2", Y, c)}, false));
   } else if (name == "polyline" || name == "polygon") {
     std::vector<double> v;
     try {
@@ -317,6 +400,9 @@ void Importer::shape(const pugi::xml_node& n, const Context& c, std::vector<SubP
   s.evenodd = c.style.evenodd;
   s.stroke_color = s.stroked ? normalise_color(c.style.stroke) : "";
   s.fill_color = s.filled ? normalise_color(c.style.fill) : "";
+  const Eigen::Matrix2d& l = c.to_mm.linear;  // mean scale: the root of the area ratio
+  s.stroke_width_mm =
+      c.style.stroke_width * std::sqrt(std::abs(l(0, 0) * l(1, 1) - l(0, 1) * l(1, 0)));
   s.group_ids = *c.group_ids;
   s.layer_labels = *c.layer_labels;
   if (!s.stroked && !s.filled) return;
@@ -347,15 +433,56 @@ void Importer::text(const pugi::xml_node& n, const TextStyle& parent_text, const
   t.group_ids = *c.group_ids;
   t.layer_labels = *c.layer_labels;
   // the reader applies the element's own font properties (relative sizes must apply once)
-  t.chars = read_text_chars(n, parent_text, &properties, origin, kMaxSvgTextChars - text_chars);
+  std::vector<std::string> bad;
+  try {
+    t.chars = read_text_chars(
+        n, parent_text, [this](const pugi::xml_node& e) { return properties(e); }, c.viewport, bad,
+        origin, kMaxSvgTextChars - text_chars);
+  } catch (const InputError& e) {
+    if (std::string(e.what()).find("more than") != std::string::npos) throw;  // a limit
+    // "<text> dy = ...", "<tspan> dy = ..." after the file name
+    std::string what = e.what();
+    if (what.rfind(origin + ": ", 0) == 0) what = what.substr(origin.size() + 2);
+    const std::string msg = printable(what, 60);
+    const bool own = msg.rfind("<text> ", 0) == 0;
+    throw BadValue{describe(n) + (own ? msg.substr(6) : " " + msg) + " (element skipped)"};
+  }
+  for (const auto& b : bad) note("<tspan> in " + describe(n) + " " + b + ": not valid (left out)");
   text_chars += t.chars.size();
   if (!t.chars.empty()) out.texts.push_back(std::move(t));
+}
+
+// The text of an element (a <style> sheet): its character data, CDATA sections included.
+std::string sheet_text(const pugi::xml_node& n) {
+  std::string out;
+  for (const auto& child : n.children()) {
+    if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) out += child.value();
+  }
+  return out;
+}
+
+// A pseudo-attribute of a processing instruction: href="#s" in <?xml-stylesheet ...?>.
+std::string pseudo_attribute(std::string_view pi, std::string_view name) {
+  for (std::size_t at = pi.find(name); at != std::string_view::npos; at = pi.find(name, at + 1)) {
+    if (at > 0 && !std::isspace(static_cast<unsigned char>(pi[at - 1]))) continue;
+    std::size_t k = at + name.size();
+    while (k < pi.size() && std::isspace(static_cast<unsigned char>(pi[k]))) ++k;
+    if (k >= pi.size() || pi[k] != '=') continue;
+    ++k;
+    while (k < pi.size() && std::isspace(static_cast<unsigned char>(pi[k]))) ++k;
+    if (k >= pi.size() || (pi[k] != '"' && pi[k] != '\'')) continue;
+    const auto end = pi.find(pi[k], k + 1);
+    if (end == std::string_view::npos) return "";
+    return std::string(pi.substr(k + 1, end - k - 1));
+  }
+  return "";
 }
 
 // Ids of every element, without recursion (pugixml's traversal is iterative), refusing a
 // document nested deeper than kMaxSvgDepth before anything recurses over it.
 struct IdIndex : pugi::xml_tree_walker {
   std::map<std::string, pugi::xml_node>* by_id = nullptr;
+  std::vector<pugi::xml_node> styles;  // <style> elements in document order
   pugi::xml_node too_deep;
   bool for_each(pugi::xml_node& n) override {
     if (n.type() != pugi::node_element) return true;
@@ -364,6 +491,7 @@ struct IdIndex : pugi::xml_tree_walker {
       return false;
     }
     if (const auto id = n.attribute("id")) by_id->emplace(id.value(), n);
+    if (local_name(n) == "style") styles.push_back(n);
     return true;
   }
 };
@@ -377,7 +505,9 @@ pugi::xml_document parse(std::string_view text, const std::string& origin) {
                      std::to_string(kMaxSvgMarkup) + ")");
   }
   pugi::xml_document doc;
-  const auto parsed = doc.load_buffer(text.data(), text.size());
+  // processing instructions kept: <?xml-stylesheet?> may point at a sheet inside the file
+  const auto parsed =
+      doc.load_buffer(text.data(), text.size(), pugi::parse_default | pugi::parse_pi);
   if (!parsed) {
     throw InputError(origin + ": malformed XML at byte " + std::to_string(parsed.offset) + " (" +
                      parsed.description() + ")");
@@ -386,6 +516,37 @@ pugi::xml_document parse(std::string_view text, const std::string& origin) {
 }
 
 }  // namespace
+
+// Sheets in document order: <?xml-stylesheet?> instructions before the root (only those
+// pointing inside the file: an external sheet is never loaded), then <style> elements.
+void Importer::read_sheets(const std::vector<pugi::xml_node>& styles,
+                           const pugi::xml_document& doc) {
+  std::vector<pugi::xml_node> read;
+  for (const auto& pi : doc.children()) {
+    if (pi.type() != pugi::node_pi || std::string_view(pi.name()) != "xml-stylesheet") continue;
+    const std::string type = pseudo_attribute(pi.value(), "type");
+    const std::string href = pseudo_attribute(pi.value(), "href");
+    if (!type.empty() && type != "text/css") {
+      ++skipped["style sheet of type " + printable(type)];
+    } else if (href.size() < 2 || href[0] != '#' || !by_id.count(href.substr(1))) {
+      ++skipped["external style sheet (never loaded)"];
+    } else if (pseudo_attribute(pi.value(), "alternate") != "yes") {
+      const pugi::xml_node target = by_id.at(href.substr(1));
+      parse_css(sheet_text(target), sheet);
+      read.push_back(target);
+    }
+  }
+  for (const auto& n : styles) {
+    const std::string type = trim(n.attribute("type").value());
+    if (!type.empty() && type != "text/css") {
+      ++skipped["style sheet of type " + printable(type)];
+    } else if (std::find(read.begin(), read.end(), n) == read.end()) {
+      parse_css(sheet_text(n), sheet);
+    }
+  }
+  for (const auto& [what, count] : sheet.skipped) skipped[what] += count;
+  if (!sheet.rules.empty()) cascade = std::make_unique<CssCascade>(sheet);
+}
 
 SvgDrawing import_svg(std::string_view text, const std::string& origin) {
   const std::optional<ExpandedEntities> expanded = expand_entities(text, origin);
@@ -403,13 +564,16 @@ SvgDrawing import_svg(std::string_view text, const std::string& origin) {
     throw InputError(origin + ": " + describe(index.too_deep) + ": elements nest deeper than " +
                      std::to_string(kMaxSvgDepth) + " levels");
   }
+  im.read_sheets(index.styles, doc);
   // Root viewport: width/height in their units (percentages fall back to the viewBox).
   const std::optional<Vec2> vb = view_box_size(root, origin);
   const auto dim = [&](const char* attr, int axis) {
     const std::string v = root.attribute(attr).value();
-    if (!v.empty() && v.back() != '%') return im.len(root, attr, 0.0);
+    if (!v.empty() && v.back() != '%')
+      return resolve_length_px(v, LengthAxis::X, LengthBasis{}, origin + ": <svg> " + attr);
     if (vb) return (*vb)[axis];
-    throw InputError(origin + ": <svg> needs " + std::string(attr) + " or a viewBox to know its size");
+    throw InputError(origin + ": <svg> needs " + std::string(attr) +
+                     " or a viewBox to know its size");
   };
   const Vec2 size_px(dim("width", 0), dim("height", 1));
   Context c;

@@ -33,25 +33,26 @@ inline constexpr std::size_t kMaxSvgPieces = 2'000'000;
 inline constexpr std::size_t kMaxSvgTextChars = 100'000;
 
 struct SvgShape {
-  std::string element;                   // "path", "rect", "circle", ...
-  std::string id;                        // the element's own id, if any (for messages)
-  std::vector<SubPath> paths;            // mm, SVG orientation (y down), document origin
-  bool stroked = false;                  // stroke is set and not none
-  bool filled = false;                   // fill is set (default black) and not none
-  bool evenodd = false;                  // fill-rule
-  std::string stroke_color;              // normalised "#rrggbb" (or the lower-cased text)
+  std::string element;         // "path", "rect", "circle", ...
+  std::string id;              // the element's own id, if any (for messages)
+  std::vector<SubPath> paths;  // mm, SVG orientation (y down), document origin
+  bool stroked = false;        // stroke is set and not none
+  bool filled = false;         // fill is set (default black) and not none
+  bool evenodd = false;        // fill-rule
+  std::string stroke_color;    // normalised "#rrggbb" (or the lower-cased text)
   std::string fill_color;
-  std::vector<std::string> group_ids;    // ids of enclosing elements, nearest first
-  std::vector<std::string> layer_labels; // inkscape:label of enclosing layers, nearest first
+  double stroke_width_mm = 0.0;           // stroke-width after transforms (their mean scale)
+  std::vector<std::string> group_ids;     // ids of enclosing elements, nearest first
+  std::vector<std::string> layer_labels;  // inkscape:label of enclosing layers, nearest first
 
   bool operator==(const SvgShape&) const = default;
 };
 
 struct SvgDrawing {
-  std::vector<SvgShape> shapes;          // document order
-  std::vector<SvgText> texts;            // <text> elements, document order (not yet drawn)
-  std::vector<std::string> skipped;      // "image (1)": what was not drawn or not applied
-  Vec2 page_mm = Vec2::Zero();           // the root viewport's size
+  std::vector<SvgShape> shapes;      // document order
+  std::vector<SvgText> texts;        // <text> elements, document order (not yet drawn)
+  std::vector<std::string> skipped;  // "image (1)": what was not drawn or not applied
+  Vec2 page_mm = Vec2::Zero();       // the root viewport's size
 };
 
 // Parses an SVG document. Internal DTD entities are expanded first (svg_entities.h).

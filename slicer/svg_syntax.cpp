@@ -81,12 +81,22 @@ class Scanner {
 
 int arg_count(char upper) {
   switch (upper) {
-    case 'M': case 'L': case 'T': return 2;
-    case 'H': case 'V': return 1;
-    case 'C': return 6;
-    case 'S': case 'Q': return 4;
-    case 'A': return 7;
-    default: return 0;
+    case 'M':
+    case 'L':
+    case 'T':
+      return 2;
+    case 'H':
+    case 'V':
+      return 1;
+    case 'C':
+      return 6;
+    case 'S':
+    case 'Q':
+      return 4;
+    case 'A':
+      return 7;
+    default:
+      return 0;
   }
 }
 
@@ -161,14 +171,30 @@ struct PathBuilder {
     const bool prev_cubic = prev == 'C' || prev == 'S';
     const bool prev_quad = prev == 'Q' || prev == 'T';
     switch (up) {
-      case 'M': move_to(pt(0)); break;
-      case 'L': line_to(pt(0)); break;
-      case 'H': line_to(Vec2(a[0] + (rel ? cur.x() : 0.0), cur.y())); break;
-      case 'V': line_to(Vec2(cur.x(), a[0] + (rel ? cur.y() : 0.0))); break;
-      case 'C': cubic_to(pt(0), pt(2), pt(4)); break;
-      case 'S': cubic_to(prev_cubic ? 2 * cur - last_cubic_ctrl : cur, pt(0), pt(2)); break;
-      case 'Q': quad_to(pt(0), pt(2)); break;
-      case 'T': quad_to(prev_quad ? 2 * cur - last_quad_ctrl : cur, pt(0)); break;
+      case 'M':
+        move_to(pt(0));
+        break;
+      case 'L':
+        line_to(pt(0));
+        break;
+      case 'H':
+        line_to(Vec2(a[0] + (rel ? cur.x() : 0.0), cur.y()));
+        break;
+      case 'V':
+        line_to(Vec2(cur.x(), a[0] + (rel ? cur.y() : 0.0)));
+        break;
+      case 'C':
+        cubic_to(pt(0), pt(2), pt(4));
+        break;
+      case 'S':
+        cubic_to(prev_cubic ? 2 * cur - last_cubic_ctrl : cur, pt(0), pt(2));
+        break;
+      case 'Q':
+        quad_to(pt(0), pt(2));
+        break;
+      case 'T':
+        quad_to(prev_quad ? 2 * cur - last_quad_ctrl : cur, pt(0));
+        break;
       case 'A': {
         const Vec2 to = pt(5);
         if ((to - cur).norm() == 0.0) break;  // SVG: an arc to the current point is omitted
@@ -176,7 +202,8 @@ struct PathBuilder {
         cur = to;
         break;
       }
-      default: break;
+      default:
+        break;
     }
     prev = up;
   }
@@ -251,7 +278,9 @@ std::vector<SubPath> parse_path_data(std::string_view d, std::string* error,
       const char up = static_cast<char>(std::toupper(static_cast<unsigned char>(cmd)));
       if (std::string_view("MLHVCSQTAZ").find(up) == std::string_view::npos ||
           (b.out.empty() && up != 'M')) {
-        if (error) *error = "unexpected '" + std::string(1, cmd) + "' at offset " + std::to_string(sc.pos() - 1);
+        if (error)
+          *error =
+              "unexpected '" + std::string(1, cmd) + "' at offset " + std::to_string(sc.pos() - 1);
         break;
       }
       if (up == 'Z') {
@@ -265,7 +294,9 @@ std::vector<SubPath> parse_path_data(std::string_view d, std::string* error,
     }
     const char up = static_cast<char>(std::toupper(static_cast<unsigned char>(cmd)));
     if (!read_args(sc, up, a)) {
-      if (error) *error = "bad arguments for '" + std::string(1, cmd) + "' at offset " + std::to_string(sc.pos());
+      if (error)
+        *error =
+            "bad arguments for '" + std::string(1, cmd) + "' at offset " + std::to_string(sc.pos());
       break;
     }
     b.apply(cmd, a);
@@ -284,20 +315,25 @@ Affine parse_transform(std::string_view text) {
     while (std::isalpha(static_cast<unsigned char>(sc.peek()))) name += sc.take();
     sc.skip_space();
     if (name.empty() || sc.peek() != '(') {
-      throw InputError("transform = \"" + std::string(text) + "\": expected a function like translate(x y)");
+      throw InputError("transform = \"" + std::string(text) +
+                       "\": expected a function like translate(x y)");
     }
     sc.take();
     std::vector<double> v;
     for (sc.skip_space(); sc.peek() != ')';) {
       const auto x = sc.number();
-      if (!x) throw InputError("transform = \"" + std::string(text) + "\": bad number in " + name + "()");
+      if (!x)
+        throw InputError("transform = \"" + std::string(text) + "\": bad number in " + name + "()");
       v.push_back(*x);
       sc.skip_comma_space();
     }
     sc.take();
     const std::size_t n = v.size();
     Affine m;
-    const auto bad = [&] { return InputError("transform = \"" + std::string(text) + "\": wrong argument count for " + name + "()"); };
+    const auto bad = [&] {
+      return InputError("transform = \"" + std::string(text) + "\": wrong argument count for " +
+                        name + "()");
+    };
     if (name == "matrix") {
       if (n != 6) throw bad();
       m.linear << v[0], v[2], v[1], v[3];
@@ -318,7 +354,8 @@ Affine parse_transform(std::string_view text) {
       const double t = std::tan(deg_to_rad(v[0]));
       m.linear << 1, (name == "skewX" ? t : 0), (name == "skewY" ? t : 0), 1;
     } else {
-      throw InputError("transform = \"" + std::string(text) + "\": unknown function " + name + "()");
+      throw InputError("transform = \"" + std::string(text) + "\": unknown function " + name +
+                       "()");
     }
     total = compose(total, m);  // later functions apply first to points
     sc.skip_comma_space();
@@ -335,7 +372,9 @@ std::vector<double> parse_number_list(std::string_view text, std::size_t max_cou
                        std::to_string(max_count) + " numbers");
     }
     const auto v = sc.number();
-    if (!v) throw InputError("points = \"" + std::string(text.substr(0, 40)) + "\": not a list of numbers");
+    if (!v)
+      throw InputError("points = \"" + std::string(text.substr(0, 40)) +
+                       "\": not a list of numbers");
     out.push_back(*v);
     sc.skip_comma_space();
   }
@@ -356,17 +395,63 @@ double parse_length_px(std::string_view text, const std::string& what) {
   if (unit == "pt") return *v * in / 72.0;
   if (unit == "pc") return *v * in / 6.0;
   throw InputError(what + " = \"" + std::string(text) + "\": unknown unit '" + unit +
-                   "' (use px, mm, cm, in, pt or pc)");
+                   "' (use px, mm, cm, in, pt, pc, em, ex or %)");
 }
+
+namespace {
+
+double resolve_finite(std::string_view text, LengthAxis axis, const LengthBasis& basis,
+                      const std::string& what);
+
+}  // namespace
+
+double resolve_length_px(std::string_view text, LengthAxis axis, const LengthBasis& basis,
+                         const std::string& what) {
+  const double v = resolve_finite(text, axis, basis, what);
+  if (!std::isfinite(v))
+    throw InputError(what + " = \"" + std::string(text) + "\": not a finite length");
+  return v;
+}
+
+namespace {
+
+double resolve_finite(std::string_view text, LengthAxis axis, const LengthBasis& basis,
+                      const std::string& what) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+    text.remove_suffix(1);
+  const auto number = [&](std::size_t suffix) {
+    Scanner sc(text.substr(0, text.size() - suffix));
+    const auto v = sc.number();
+    if (!v || !sc.done()) throw InputError(what + " = \"" + std::string(text) + "\": not a length");
+    return *v;
+  };
+  const auto ends = [&](std::string_view unit) {
+    return text.size() > unit.size() && text.substr(text.size() - unit.size()) == unit;
+  };
+  if (ends("%")) {
+    const Vec2& v = basis.viewport;
+    const double full = axis == LengthAxis::X   ? v.x()
+                        : axis == LengthAxis::Y ? v.y()
+                                                : std::sqrt((v.x() * v.x() + v.y() * v.y()) / 2.0);
+    return number(1) * full / 100.0;
+  }
+  if (ends("em")) return number(2) * basis.font_size_px;
+  if (ends("ex")) return number(2) * basis.font_size_px / 2.0;
+  return parse_length_px(text, what);
+}
+
+}  // namespace
 
 std::string normalise_color(std::string_view text) {
   static const std::map<std::string, std::string> kNamed = {
-      {"black", "#000000"}, {"white", "#ffffff"}, {"red", "#ff0000"}, {"green", "#008000"},
-      {"lime", "#00ff00"},  {"blue", "#0000ff"},  {"yellow", "#ffff00"}, {"cyan", "#00ffff"},
+      {"black", "#000000"},   {"white", "#ffffff"},  {"red", "#ff0000"},    {"green", "#008000"},
+      {"lime", "#00ff00"},    {"blue", "#0000ff"},   {"yellow", "#ffff00"}, {"cyan", "#00ffff"},
       {"magenta", "#ff00ff"}, {"orange", "#ffa500"}, {"purple", "#800080"}, {"gray", "#808080"},
-      {"grey", "#808080"}, {"brown", "#a52a2a"}, {"navy", "#000080"}, {"pink", "#ffc0cb"}};
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+      {"grey", "#808080"},    {"brown", "#a52a2a"},  {"navy", "#000080"},   {"pink", "#ffc0cb"}};
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front())))
+    text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
+    text.remove_suffix(1);
   std::string s(text);
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char ch) { return std::tolower(ch); });
   if (kNamed.count(s)) return kNamed.at(s);

@@ -34,6 +34,22 @@ std::vector<double> parse_number_list(
 // Percentages and other units throw InputError naming `what`.
 double parse_length_px(std::string_view text, const std::string& what);
 
+// What a percentage length refers to (SVG 1.1, 7.10): the viewport's width, its height, or
+// its normalised diagonal sqrt((w^2 + h^2) / 2) for lengths in no direction (r, stroke-width).
+enum class LengthAxis { X, Y, Other };
+
+// What relative lengths are relative to: em = font_size_px, ex = font_size_px / 2 (the CSS
+// fallback without font metrics), % of the viewport (user units) along `axis`.
+struct LengthBasis {
+  double font_size_px = 16.0;
+  Vec2 viewport = Vec2::Zero();
+};
+
+// A length in user units with every SVG unit: the absolute ones of parse_length_px, em, ex
+// and %. Throws InputError naming `what` for malformed text and other units.
+double resolve_length_px(std::string_view text, LengthAxis axis, const LengthBasis& basis,
+                         const std::string& what);
+
 // Elliptical arc from `from` to `to` (SVG endpoint form) as a centre-form piece; radii that
 // are too small are scaled up as the SVG spec prescribes. Zero radii give a line.
 CurvePiece arc_piece(const Vec2& from, double rx, double ry, double x_axis_rotation_deg,

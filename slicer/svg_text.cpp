@@ -18,23 +18,28 @@ namespace {
 
 // CSS absolute-size keywords in px (CSS 2.1 suggested table at medium = 16 px).
 const std::map<std::string, double> kSizeKeywords = {
-    {"xx-small", 9}, {"x-small", 10}, {"small", 13}, {"medium", 16},
+    {"xx-small", 9}, {"x-small", 10}, {"small", 13},   {"medium", 16},
     {"large", 18},   {"x-large", 24}, {"xx-large", 32}};
 
-double font_size_px(const std::string& text, double parent_px, const std::string& origin) {
+// A font-size value in px: keywords, relative keywords, % and em of the parent's size, ex of
+// half of it, absolute lengths. Throws InputError for anything else.
+double font_size_px(const std::string& text, double parent_px) {
   if (kSizeKeywords.count(text)) return kSizeKeywords.at(text);
   if (text == "smaller") return parent_px / 1.2;
   if (text == "larger") return parent_px * 1.2;
-  const auto relative = [&](std::size_t suffix, double per_unit) {
-    return parse_number_list(text.substr(0, text.size() - suffix)).at(0) * per_unit;
-  };
-  try {
-    if (text.size() > 1 && text.back() == '%') return relative(1, parent_px / 100.0);
-    if (text.size() > 2 && text.compare(text.size() - 2, 2, "em") == 0) return relative(2, parent_px);
-    return parse_length_px(text, origin + ": font-size");
-  } catch (const std::out_of_range&) {
-    throw InputError(origin + ": font-size = \"" + text + "\": must be a length");
+  LengthBasis basis;
+  basis.font_size_px = parent_px;
+  basis.viewport = Vec2(parent_px, parent_px);  // a percentage is of the parent's size
+  return resolve_length_px(text, LengthAxis::X, basis, "font-size");
+}
+
+// "3q" cut short and with control characters replaced (notes reach G-code comments).
+std::string quoted(const std::string& v) {
+  std::string out = v.substr(0, 24);
+  for (char& ch : out) {
+    if (static_cast<unsigned char>(ch) < 0x20 || static_cast<unsigned char>(ch) > 0x7e) ch = '?';
   }
+  return "\"" + out + (v.size() > 24 ? "...\"" : "\"");
 }
 
 // One raw character and the innermost element it came from.
@@ -50,16 +55,20 @@ struct Element {
 };
 
 struct Reader {
-  PropertyReader properties;
+  const PropertyReader& properties;
   std::string origin;
   std::size_t max_chars = 0;
+  Vec2 viewport = Vec2::Zero();
+  std::vector<std::string>& notes;
   std::vector<RawChar> raw;
   std::vector<Element> elements;  // pre-order
 
   void walk(const pugi::xml_node& n, TextStyle style) {
     const auto props = properties(n);
     if (props.count("display") && props.at("display") == "none") return;
-    inherit_text_style(props, style, origin);
+    std::vector<std::string> root_notes;  // the <text> element's own were noted as it was entered
+    inherit_text_style(props, style, viewport, elements.empty() ? root_notes : notes, true,
+                       !elements.empty());
     const int id = static_cast<int>(elements.size());
     elements.push_back({n, style, raw.size(), raw.size()});
     for (const auto& child : n.children()) {
@@ -98,7 +107,8 @@ bool is_space(char32_t c) { return c == U' ' || c == U'\t' || c == U'\n' || c ==
 std::vector<std::size_t> kept_characters(const std::vector<RawChar>& raw, bool preserve) {
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < raw.size(); ++i) {
-    if (!preserve && is_space(raw[i].code) && (kept.empty() || is_space(raw[kept.back()].code))) continue;
+    if (!preserve && is_space(raw[i].code) && (kept.empty() || is_space(raw[kept.back()].code)))
+      continue;
     kept.push_back(i);
   }
   if (!preserve) {
@@ -107,16 +117,23 @@ std::vector<std::size_t> kept_characters(const std::vector<RawChar>& raw, bool p
   return kept;
 }
 
-std::vector<double> list_attribute(const pugi::xml_node& n, const char* name, const std::string& origin) {
+// x, y, dx, dy: lengths with units, separated by commas or spaces; em of the element's own
+// font-size, % of the viewport's width (x, dx) or height (y, dy).
+std::vector<double> list_attribute(const pugi::xml_node& n, const char* name,
+                                   const TextStyle& style, const Vec2& viewport,
+                                   const std::string& origin) {
   std::vector<double> out;
   const auto a = n.attribute(name);
   if (!a) return out;
-  // lengths with units, separated by commas or spaces
+  const LengthAxis axis = name[0] == 'x' || name[1] == 'x' ? LengthAxis::X : LengthAxis::Y;
+  const LengthBasis basis{style.font_size, viewport};
   std::string item;
   const std::string text = std::string(a.value()) + " ";
   for (char ch : text) {
     if (ch == ',' || std::isspace(static_cast<unsigned char>(ch))) {
-      if (!item.empty()) out.push_back(parse_length_px(item, origin + ": <" + n.name() + "> " + name));
+      if (!item.empty())
+        out.push_back(
+            resolve_length_px(item, axis, basis, origin + ": <" + n.name() + "> " + name));
       item.clear();
     } else {
       item += ch;
@@ -125,25 +142,88 @@ std::vector<double> list_attribute(const pugi::xml_node& n, const char* name, co
   return out;
 }
 
+// A spacing value: normal (0) or a length (em of the element's font-size).
+double spacing_px(const std::string& v, const TextStyle& style, const Vec2& viewport) {
+  if (v == "normal") return 0.0;
+  return resolve_length_px(v, LengthAxis::X, LengthBasis{style.font_size, viewport}, "spacing");
+}
+
 }  // namespace
 
 void inherit_text_style(const std::map<std::string, std::string>& props, TextStyle& style,
-                        const std::string& origin) {
-  if (props.count("font-size")) style.font_size = font_size_px(props.at("font-size"), style.font_size, origin);
-  if (props.count("font-family")) style.font_family = props.at("font-family");
-  if (props.count("font-weight")) style.font_weight = props.at("font-weight");
-  if (props.count("font-style")) style.font_style = props.at("font-style");
-  if (props.count("text-anchor")) {
-    const std::string& a = props.at("text-anchor");
-    style.anchor = a == "middle" ? TextAnchor::Middle : a == "end" ? TextAnchor::End : TextAnchor::Start;
+                        const Vec2& viewport, std::vector<std::string>& notes, bool text_content,
+                        bool tspan) {
+  const auto get = [&](const char* key) -> const std::string* {
+    const auto p = props.find(key);
+    return p == props.end() || p->second == "inherit" ? nullptr : &p->second;
+  };
+  // a value in error is left out (CSS: an invalid declaration is ignored), with a note
+  const auto apply = [&](const char* key, auto set) {
+    const std::string* v = get(key);
+    if (v == nullptr) return;
+    try {
+      set(*v);
+    } catch (const InputError&) {
+      notes.push_back(std::string(key) + " = " + quoted(*v));
+    }
+  };
+  const TextStyle parent = style;
+  apply("font-size",
+        [&](const std::string& v) { style.font_size = font_size_px(v, parent.font_size); });
+  if (const auto* v = get("font-family")) style.font_family = *v;
+  if (const auto* v = get("font-weight")) style.font_weight = *v;
+  if (const auto* v = get("font-style")) style.font_style = *v;
+  if (const auto* a = get("text-anchor")) {
+    style.anchor = *a == "middle" ? TextAnchor::Middle
+                   : *a == "end"  ? TextAnchor::End
+                                  : TextAnchor::Start;
   }
-  if (props.count("xml:space")) style.preserve_space = props.at("xml:space") == "preserve";
+  if (const auto* v = get("xml:space")) style.preserve_space = *v == "preserve";
+  apply("letter-spacing",
+        [&](const std::string& v) { style.letter_spacing = spacing_px(v, style, viewport); });
+  apply("word-spacing",
+        [&](const std::string& v) { style.word_spacing = spacing_px(v, style, viewport); });
+  if (!text_content) return;
+  apply("text-decoration", [&](const std::string& v) {
+    unsigned flags = 0;  // decorations add to the ancestors' (a child cannot remove them)
+    std::size_t b = 0;
+    while (b < v.size()) {
+      const std::size_t e = std::min(v.find(' ', b), v.size());
+      const std::string word = v.substr(b, e - b);
+      if (word == "underline")
+        flags |= kUnderline;
+      else if (word == "overline")
+        flags |= kOverline;
+      else if (word == "line-through")
+        flags |= kLineThrough;
+      else if (word != "none" && word != "blink" && !word.empty())
+        throw InputError("text-decoration");
+      b = e + 1;
+    }
+    style.decoration |= flags;
+  });
+  if (!tspan) return;
+  apply("baseline-shift", [&](const std::string& v) {
+    // sub and super as browsers place them for a font without metrics; % of the line height
+    // (the font-size here), lengths in em of the element's own font-size
+    double shift = 0.0;
+    if (v == "sub")
+      shift = -0.2 * style.font_size;
+    else if (v == "super")
+      shift = 0.4 * style.font_size;
+    else if (v != "baseline")
+      shift = resolve_length_px(v, LengthAxis::X,
+                                LengthBasis{style.font_size, Vec2(style.font_size, 0.0)},
+                                "baseline-shift");
+    style.baseline_shift = parent.baseline_shift + shift;
+  });
 }
 
 std::vector<TextChar> read_text_chars(const pugi::xml_node& text, const TextStyle& inherited,
-                                      PropertyReader properties, const std::string& origin,
+                                      const PropertyReader& properties, const Vec2& viewport,
+                                      std::vector<std::string>& notes, const std::string& origin,
                                       std::size_t max_chars) {
-  Reader r{properties, origin, max_chars, {}, {}};
+  Reader r{properties, origin, max_chars, viewport, notes, {}, {}};
   r.walk(text, inherited);
   if (r.elements.empty()) return {};
   const std::vector<std::size_t> kept = kept_characters(r.raw, r.elements[0].style.preserve_space);
@@ -159,8 +239,9 @@ std::vector<TextChar> read_text_chars(const pugi::xml_node& text, const TextStyl
     const auto first = std::lower_bound(kept.begin(), kept.end(), e.begin) - kept.begin();
     const auto last = std::lower_bound(kept.begin(), kept.end(), e.end) - kept.begin();
     const auto apply = [&](const char* name, auto set) {
-      const auto values = list_attribute(e.node, name, origin);
-      for (std::size_t i = 0; i < values.size() && first + static_cast<long>(i) < last; ++i) set(out[first + i], values[i]);
+      const auto values = list_attribute(e.node, name, e.style, viewport, origin);
+      for (std::size_t i = 0; i < values.size() && first + static_cast<long>(i) < last; ++i)
+        set(out[first + i], values[i]);
     };
     apply("x", [](TextChar& c, double v) { c.x = v; });
     apply("y", [](TextChar& c, double v) { c.y = v; });

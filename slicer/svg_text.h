@@ -14,23 +14,37 @@ namespace strand::slicer {
 
 enum class TextAnchor { Start, Middle, End };
 
-// Font properties, inherited down the document like fill and stroke.
+// Text decorations (CSS text-decoration-line), a set of flags.
+enum TextDecoration : unsigned { kUnderline = 1, kOverline = 2, kLineThrough = 4 };
+
+// Font properties, inherited down the document like fill and stroke. Lengths in user units
+// (px) of the element's coordinate system, computed where they are given (em and % resolved).
 struct TextStyle {
-  double font_size = 16.0;           // user units (px) of the element's coordinate system
+  double font_size = 16.0;
   std::string font_family = "sans-serif";  // as written: "'DejaVu Sans', sans-serif"
   std::string font_weight = "normal";
   std::string font_style = "normal";
   TextAnchor anchor = TextAnchor::Start;
-  bool preserve_space = false;       // xml:space="preserve"
+  bool preserve_space = false;  // xml:space="preserve"
+  double letter_spacing = 0.0;  // added after every character
+  double word_spacing = 0.0;    // added after every space
+  // Not inherited but applying to the content of the element that sets them (CSS 2.1):
+  unsigned decoration = 0;      // TextDecoration flags of this element and its ancestors
+  double baseline_shift = 0.0;  // up (against SVG's y), summed over nested tspans
 
   bool operator==(const TextStyle&) const = default;
 };
 
-// Applies the text properties among `props` (font-size, font-family, font-weight,
-// font-style, text-anchor, xml:space) to `style`; font-size in %, em, keywords or lengths.
-// Throws InputError naming `origin` for a font-size that is no length.
+// Applies the text properties among `props` to `style`: the inherited ones (font-size,
+// font-family, font-weight, font-style, text-anchor, xml:space, letter-spacing,
+// word-spacing; "inherit" keeps the parent's value) and, for text content elements
+// (`text_content`), text-decoration and baseline-shift (sub, super, lengths, % of the
+// font-size; `tspan` is false for <text> itself, where baseline-shift does not apply).
+// Lengths in px, em, ex, % and absolute units; `viewport` for percentages of spacing. A value
+// that is not valid is left out and described in `notes` ("font-size = \"1q\"").
 void inherit_text_style(const std::map<std::string, std::string>& props, TextStyle& style,
-                        const std::string& origin);
+                        const Vec2& viewport, std::vector<std::string>& notes,
+                        bool text_content = false, bool tspan = false);
 
 // One addressable character of a <text> element after white-space handling.
 struct TextChar {
@@ -47,10 +61,10 @@ struct TextChar {
 // A <text> element: characters in document order, placed in the text's user space.
 struct SvgText {
   std::vector<TextChar> chars;
-  Affine to_mm;                      // the element's user space -> mm (SVG y down)
+  Affine to_mm;  // the element's user space -> mm (SVG y down)
   bool stroked = false, filled = false;
   std::string stroke_color, fill_color;
-  std::vector<std::string> group_ids;     // as SvgShape, for pen assignment
+  std::vector<std::string> group_ids;  // as SvgShape, for pen assignment
   std::vector<std::string> layer_labels;
 
   bool operator==(const SvgText&) const = default;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -15,14 +16,17 @@ class xml_node;
 
 namespace strand::slicer {
 
-// An element's presentation properties (attributes, then its style attribute).
-using PropertyReader = std::map<std::string, std::string> (*)(const pugi::xml_node&);
+// An element's properties after the cascade (attributes, sheets, style attribute).
+using PropertyReader = std::function<std::map<std::string, std::string>(const pugi::xml_node&)>;
 
 // Characters of `text` (a <text> element) with their positions and styles; hidden tspans
-// (display:none) are left out. Throws InputError naming `origin` for malformed lengths and
-// for more than `max_chars` characters (checked as they are read).
+// (display:none) are left out; `viewport` (user units) is what percentages refer to. Property
+// values in error are left out and described in `notes`. Throws InputError naming `origin`
+// for malformed x/y/dx/dy lengths and for more than `max_chars` characters (checked as they
+// are read).
 std::vector<TextChar> read_text_chars(const pugi::xml_node& text, const TextStyle& inherited,
-                                      PropertyReader properties, const std::string& origin,
+                                      const PropertyReader& properties, const Vec2& viewport,
+                                      std::vector<std::string>& notes, const std::string& origin,
                                       std::size_t max_chars);
 
 }  // namespace strand::slicer

@@ -2,12 +2,16 @@
 // width times font-size / units-per-em, then each text chunk shifted for its anchor.
 #include "slicer/text_layout.h"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <optional>
 
 #include "slicer/hershey_font.h"
 #include "slicer/input_error.h"
 #include "slicer/outline_font.h"
+#include "slicer/params.h"
+#include "slicer/svg_shapes.h"
 
 namespace strand::slicer {
 
@@ -31,19 +35,26 @@ struct FontCache {
     std::string family = options.font;
     if (family.empty()) {
       const auto found = installed_family(s.font_family);
-      if (!found) throw InputError("text font-family = " + s.font_family + ": no installed font carries it (fc-list shows the installed fonts; --font NAME picks one)");
+      if (!found)
+        throw InputError("text font-family = " + s.font_family +
+                         ": no installed font carries it (fc-list shows the installed fonts; "
+                         "--font NAME picks one)");
       family = *found;
     }
     const std::string key = family + "|" + s.font_weight + "|" + s.font_style;
-    if (!fonts.count(key)) fonts.emplace(key, load_outline_font(family, s.font_weight, s.font_style, all_chars));
+    if (!fonts.count(key))
+      fonts.emplace(key, load_outline_font(family, s.font_weight, s.font_style, all_chars));
     return fonts.at(key);
   }
 };
 
 struct Placed {
   const Glyph* glyph = nullptr;
-  Vec2 at = Vec2::Zero();  // user units, baseline origin of the glyph
+  const Font* font = nullptr;
+  Vec2 at = Vec2::Zero();  // user units, baseline origin of the glyph (baseline-shift applied)
   double scale = 1.0;      // user units per font unit
+  double advance = 0.0;    // user units to the next character, spacing included
+  unsigned decoration = 0;
 };
 
 // Positions of every character of one text element (before the transform to mm).
@@ -68,23 +79,78 @@ std::vector<Placed> place(const SvgText& t, FontCache& cache, TextDrawing& out) 
     }
     pen += Vec2(c.dx, c.dy);
     const Font& font = cache.font_for(c.style);
-    if (std::find(out.fonts.begin(), out.fonts.end(), font.name) == out.fonts.end()) out.fonts.push_back(font.name);
+    if (std::find(out.fonts.begin(), out.fonts.end(), font.name) == out.fonts.end())
+      out.fonts.push_back(font.name);
     Placed p;
-    p.at = pen;
+    p.font = &font;
+    p.at = pen - Vec2(0.0, c.style.baseline_shift);  // a shift up is towards SVG's -y
     p.scale = c.style.font_size / font.units_per_em;
+    p.decoration = c.style.decoration;
     const auto g = font.glyphs.find(c.code);
     if (g != font.glyphs.end()) {
       p.glyph = &g->second;
-      pen.x() += g->second.advance * p.scale;
+      p.advance = g->second.advance * p.scale;
       out.glyphs += c.code != U' ' && !g->second.paths.empty();
     } else {
       ++out.missing;
-      pen.x() += 0.5 * c.style.font_size;  // an en space keeps the words apart
+      p.advance = 0.5 * c.style.font_size;  // an en space keeps the words apart
     }
+    // CSS: letter-spacing after every character, word-spacing after every space
+    p.advance += c.style.letter_spacing + (c.code == U' ' ? c.style.word_spacing : 0.0);
+    pen.x() += p.advance;
     placed.push_back(p);
   }
   close_chunk(t.chars.size());
   return placed;
+}
+
+// Underline, overline and line-through of runs of characters that share the decoration,
+// font, size and baseline and follow each other: lines in user units at the font's metrics
+// (open strokes for single-stroke fonts, closed bars of the underline thickness for outlines).
+std::vector<SubPath> decorations(const std::vector<Placed>& placed) {
+  std::vector<SubPath> out;
+  for (std::size_t b = 0; b < placed.size();) {
+    const Placed& first = placed[b];
+    std::size_t e = b + 1;
+    while (e < placed.size() && placed[e].decoration == first.decoration &&
+           placed[e].font == first.font && placed[e].scale == first.scale &&
+           placed[e].at.y() == first.at.y() &&
+           std::abs(placed[e].at.x() - (placed[e - 1].at.x() + placed[e - 1].advance)) <
+               1e-9 * (1 + std::abs(placed[e].at.x()))) {
+      ++e;
+    }
+    const double x0 = first.at.x(), x1 = placed[e - 1].at.x() + placed[e - 1].advance;
+    if (first.decoration != 0 && first.font != nullptr && x1 > x0) {
+      const Font& f = *first.font;
+      for (const auto& [flag, height] :
+           {std::pair{kUnderline, f.underline_position}, std::pair{kOverline, f.overline_position},
+            std::pair{kLineThrough, f.strikeout_position}}) {
+        if (!(first.decoration & flag)) continue;
+        const double y = first.at.y() - height * first.scale;  // font y up, SVG y down
+        if (f.single_stroke) {
+          out.push_back(polyline_path({x0, y, x1, y}, false));
+        } else {
+          const double h = f.underline_thickness * first.scale / 2;
+          out.push_back(polyline_path({x0, y - h, x1, y - h, x1, y + h, x0, y + h}, true));
+        }
+      }
+    }
+    b = e;
+  }
+  return out;
+}
+
+// Spacing and shifts add up along a line: a glyph placed beyond the coordinate bound is
+// refused like any other coordinate of the drawing.
+SubPath checked(SubPath p) {
+  const double m = max_abs_coordinate(p);
+  if (!(m <= kMaxCoordinateMm)) {
+    throw InputError("text: a glyph lies at " +
+                     (std::isfinite(m) ? short_number(m) + " mm"
+                                       : std::string("a coordinate that is not finite")) +
+                     " (at most " + short_number(kMaxCoordinateMm) + " mm from the origin)");
+  }
+  return p;
 }
 
 }  // namespace
@@ -128,13 +194,17 @@ TextDrawing layout_text(const std::vector<SvgText>& texts, const TextOptions& o)
     shape.stroke_color = t.stroked ? t.stroke_color : strokes ? t.fill_color : "";
     shape.fill_color = t.fill_color;
     if (!shape.stroked && !shape.filled) continue;
-    for (const Placed& p : place(t, cache, out)) {
+    const std::vector<Placed> placed = place(t, cache, out);
+    for (const Placed& p : placed) {
       if (p.glyph == nullptr) continue;
       Affine m;
-      m.linear = t.to_mm.linear * Eigen::DiagonalMatrix<double, 2>(p.scale, -p.scale);  // font y up, SVG y down
+      m.linear = t.to_mm.linear *
+                 Eigen::DiagonalMatrix<double, 2>(p.scale, -p.scale);  // font y up, SVG y down
       m.offset = t.to_mm.apply(p.at);
-      for (const auto& path : p.glyph->paths) shape.paths.push_back(transformed(path, m));
+      for (const auto& path : p.glyph->paths) shape.paths.push_back(checked(transformed(path, m)));
     }
+    for (const SubPath& line : decorations(placed))
+      shape.paths.push_back(checked(transformed(line, t.to_mm)));
     if (shape.paths.empty()) continue;
     ++out.elements;
     out.shapes.push_back(std::move(shape));

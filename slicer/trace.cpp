@@ -4,7 +4,10 @@
 
 #include <potracelib.h>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdint>
 #include <memory>
 
 #include "slicer/input_error.h"
@@ -29,14 +32,17 @@ std::vector<potrace_word> bitmap_words(const GreyImage& img, double threshold, i
   for (int r = 0; r < img.height; ++r) {
     potrace_word* row = map.data() + static_cast<std::size_t>(img.height - 1 - r) * dy;
     for (int x = 0; x < img.width; ++x) {
-      if (img.at(x, r) < t) row[x / kWordBits] |= potrace_word(1) << (kWordBits - 1 - x % kWordBits);
+      if (img.at(x, r) < t)
+        row[x / kWordBits] |= potrace_word(1) << (kWordBits - 1 - x % kWordBits);
     }
   }
   return map;
 }
 
 // potrace's y-up pixel coordinates -> mm, y down from the top-left corner.
-Vec2 to_mm(const potrace_dpoint_t& p, double h, double px) { return Vec2(p.x * px, (h - p.y) * px); }
+Vec2 to_mm(const potrace_dpoint_t& p, double h, double px) {
+  return Vec2(p.x * px, (h - p.y) * px);
+}
 
 SubPath subpath_of(const potrace_curve_t& c, double h, double px) {
   SubPath s;
@@ -69,7 +75,8 @@ std::vector<SubPath> trace_bitmap(const GreyImage& img, double threshold, const 
   param->opticurve = o.opttolerance > 0 ? 1 : 0;
   param->opttolerance = o.opttolerance;
   std::unique_ptr<potrace_state_t, StateFree> state(potrace_trace(param.get(), &bm));
-  if (!state || state->status != POTRACE_STATUS_OK) throw std::bad_alloc();  // potrace fails only on memory
+  if (!state || state->status != POTRACE_STATUS_OK)
+    throw std::bad_alloc();  // potrace fails only on memory
   std::vector<SubPath> out;
   for (const potrace_path_t* p = state->plist; p != nullptr; p = p->next) {
     if (p->curve.n > 0) out.push_back(subpath_of(p->curve, img.height, o.pixel_mm));
@@ -77,12 +84,65 @@ std::vector<SubPath> trace_bitmap(const GreyImage& img, double threshold, const 
   return out;
 }
 
+// A float copy of the image for filtering (0..255).
+using Plane = std::vector<float>;
+
+// Gaussian blur of standard deviation `sigma` approximated by three box blurs (W. Wells,
+// 1986): time independent of the radius. Edges repeat the border pixel.
+void gaussian(Plane& p, int w, int h, double sigma) {
+  // box width for three passes: sqrt(12 sigma^2 / 3 + 1), odd, at least 1
+  int r = static_cast<int>(std::lround((std::sqrt(4.0 * sigma * sigma + 1.0) - 1.0) / 2.0));
+  r = std::clamp(r, 0, std::max(w, h));
+  if (r == 0) return;
+  std::vector<float> line(static_cast<std::size_t>(std::max(w, h)));
+  const auto pass = [&](std::size_t base, std::size_t stride, int n) {
+    for (int i = 0; i < n; ++i) line[i] = p[base + i * stride];
+    const auto at = [&](int i) { return line[std::clamp(i, 0, n - 1)]; };
+    double sum = 0.0;
+    for (int i = -r; i <= r; ++i) sum += at(i);
+    for (int i = 0; i < n; ++i) {
+      p[base + i * stride] = static_cast<float>(sum / (2 * r + 1));
+      sum += at(i + r + 1) - at(i - r);
+    }
+  };
+  for (int k = 0; k < 3; ++k) {
+    for (int y = 0; y < h; ++y) pass(static_cast<std::size_t>(y) * w, 1, w);
+    for (int x = 0; x < w; ++x) pass(static_cast<std::size_t>(x), static_cast<std::size_t>(w), h);
+  }
+}
+
+std::uint8_t grey_of(double v) {
+  return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
+}
+
+// Ink (0) where a pixel is 10 % darker than its neighbourhood's Gaussian mean, else paper.
+GreyImage adaptive_bitmap(const GreyImage& img, double radius) {
+  Plane mean(img.grey.begin(), img.grey.end());
+  gaussian(mean, img.width, img.height, radius);
+  GreyImage out = img;
+  for (std::size_t i = 0; i < out.grey.size(); ++i)
+    out.grey[i] = img.grey[i] < 0.9 * mean[i] ? 0 : 255;
+  return out;
+}
+
 void check(const TraceOptions& o) {
   std::vector<std::string> problems;
-  if (o.threshold && !(*o.threshold > 0.0 && *o.threshold <= 1.0)) problems.push_back("trace.threshold: must be in (0, 1]");
-  if (o.levels < 1 || o.levels > 8) problems.push_back("trace.levels = " + std::to_string(o.levels) + ": must be in [1, 8]");
+  if (!(o.highpass_px >= 0.0 && o.highpass_px <= 1000.0))
+    problems.push_back("trace.highpass: must be in [0, 1000] (px)");
+  if (!(o.blur_px >= 0.0 && o.blur_px <= 1000.0))
+    problems.push_back("trace.blur: must be in [0, 1000] (px)");
+  if (o.upscale < 1 || o.upscale > 8)
+    problems.push_back("trace.upscale = " + std::to_string(o.upscale) + ": must be in [1, 8]");
+  if (o.adaptive && o.levels != 1)
+    problems.push_back("trace.levels = " + std::to_string(o.levels) +
+                       ": must be 1 with an adaptive threshold");
+  if (o.threshold && !(*o.threshold > 0.0 && *o.threshold <= 1.0))
+    problems.push_back("trace.threshold: must be in (0, 1]");
+  if (o.levels < 1 || o.levels > 8)
+    problems.push_back("trace.levels = " + std::to_string(o.levels) + ": must be in [1, 8]");
   if (o.turdsize < 0) problems.push_back("trace.turdsize: must be >= 0 (px)");
-  if (!(o.alphamax >= 0.0 && o.alphamax <= 1.3334)) problems.push_back("trace.alphamax: must be in [0, 1.3334]");
+  if (!(o.alphamax >= 0.0 && o.alphamax <= 1.3334))
+    problems.push_back("trace.alphamax: must be in [0, 1.3334]");
   if (!(o.opttolerance >= 0.0)) problems.push_back("trace.opttolerance: must be >= 0 (px)");
   if (!(o.pixel_mm > 0.0)) problems.push_back("trace.pixel-size: must be > 0 (mm)");
   if (!problems.empty()) throw InputError(problems);
@@ -97,7 +157,7 @@ double otsu_threshold(const GreyImage& image) {
   double sum_all = 0.0;
   for (int i = 0; i < 256; ++i) sum_all += i * hist[i];
   double w0 = 0.0, sum0 = 0.0, best = -1.0;
-  int first = 127, last = 127;  // the range of greys that reach the best variance
+  int first = 127, last = 127;     // the range of greys that reach the best variance
   for (int t = 0; t < 256; ++t) {  // class 0: grey <= t
     w0 += hist[t];
     sum0 += t * hist[t];
@@ -116,15 +176,71 @@ double otsu_threshold(const GreyImage& image) {
   return (best_t + 1) / 255.0;  // ink: grey < threshold, so grey <= best_t is ink
 }
 
+GreyImage filter_image(const GreyImage& image, const TraceOptions& o) {
+  check(o);
+  if (o.highpass_px == 0.0 && o.blur_px == 0.0 && o.upscale == 1) return image;
+  const int w = image.width, h = image.height;
+  Plane p(image.grey.begin(), image.grey.end());
+  if (o.highpass_px > 0.0) {  // the background (lighting) removed, paper at mid grey
+    Plane background = p;
+    gaussian(background, w, h, o.highpass_px);
+    for (std::size_t i = 0; i < p.size(); ++i) p[i] = p[i] - background[i] + 128.0f;
+  }
+  if (o.blur_px > 0.0) gaussian(p, w, h, o.blur_px);
+  const int n = o.upscale;
+  GreyImage out;
+  out.width = w * n;
+  out.height = h * n;
+  out.grey.resize(static_cast<std::size_t>(out.width) * out.height);
+  for (int y = 0; y < out.height; ++y) {
+    // the centre of output pixel y in input pixel coordinates
+    const double sy = std::clamp((y + 0.5) / n - 0.5, 0.0, h - 1.0);
+    const int y0 = std::min(static_cast<int>(sy), h - 1), y1 = std::min(y0 + 1, h - 1);
+    const double fy = sy - y0;
+    for (int x = 0; x < out.width; ++x) {
+      const double sx = std::clamp((x + 0.5) / n - 0.5, 0.0, w - 1.0);
+      const int x0 = std::min(static_cast<int>(sx), w - 1), x1 = std::min(x0 + 1, w - 1);
+      const double fx = sx - x0;
+      const auto at = [&](int xx, int yy) {
+        return static_cast<double>(p[static_cast<std::size_t>(yy) * w + xx]);
+      };
+      const double v = (1 - fy) * ((1 - fx) * at(x0, y0) + fx * at(x1, y0)) +
+                       fy * ((1 - fx) * at(x0, y1) + fx * at(x1, y1));
+      out.grey[static_cast<std::size_t>(y) * out.width + x] = grey_of(v);
+    }
+  }
+  return out;
+}
+
 Trace trace_image(const GreyImage& image, const TraceOptions& o) {
   check(o);
+  const long upscaled = static_cast<long>(image.width) * image.height * o.upscale * o.upscale;
+  if (upscaled > kMaxTracePixels) {
+    throw InputError("trace.upscale = " + std::to_string(o.upscale) + ": the " +
+                     std::to_string(image.width) + " x " + std::to_string(image.height) +
+                     " px image would become " + std::to_string(upscaled) + " px (at most " +
+                     std::to_string(kMaxTracePixels) + ")");
+  }
+  GreyImage img = filter_image(image, o);
+  TraceOptions scaled = o;
+  scaled.pixel_mm = o.pixel_mm / o.upscale;
   Trace out;
   out.size_mm = Vec2(image.width, image.height) * o.pixel_mm;
-  const double top = o.threshold ? *o.threshold : otsu_threshold(image);
+  if (o.adaptive) {
+    const double radius = o.highpass_px > 0.0
+                              ? o.highpass_px * o.upscale
+                              : std::max(8.0, std::min(img.width, img.height) / 16.0);
+    TraceLevel level;
+    level.threshold = 0.5;  // of the adaptive bitmap: ink 0, paper 255
+    level.paths = trace_bitmap(adaptive_bitmap(img, radius), 0.5, scaled);
+    out.levels.push_back(std::move(level));
+    return out;
+  }
+  const double top = o.threshold ? *o.threshold : o.highpass_px > 0.0 ? 0.45 : otsu_threshold(img);
   for (int k = 1; k <= o.levels; ++k) {
     TraceLevel level;
     level.threshold = top * (o.levels + 1 - k) / o.levels;
-    level.paths = trace_bitmap(image, level.threshold, o);
+    level.paths = trace_bitmap(img, level.threshold, scaled);
     out.levels.push_back(std::move(level));
   }
   return out;

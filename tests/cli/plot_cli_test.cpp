@@ -282,6 +282,41 @@ TEST(TraceCli, BadImagesAndOptionsAreInputErrors) {
   EXPECT_FALSE(exists(dir + "/x.gcode"));
 }
 
+// Issue 19: an unevenly lit scan (samples/plot/uneven-page.pgm) traces to its six letters
+// (3 bars, 3 rings with their counters) with mkbitmap's filters or an adaptive threshold.
+TEST(TraceCli, HighPassAndAdaptiveThresholdTraceAnUnevenPageToLetters) {
+  const auto dir = fresh_dir("traceuneven");
+  const std::string page = "'" + kSamples + "uneven-page.pgm'";
+  for (const std::string flags : {"--highpass 8 --upscale 2", "--threshold adaptive"}) {
+    const auto r = run_strand("trace " + page + " " + flags + " --pixel-size 1 -o page.svg", dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find(": 9 outline(s), 240 x 120 px"), std::string::npos) << flags << "\n" << r.out;
+  }
+  expect_input_error(run_strand("trace " + page + " --threshold bright -o x.svg", dir),
+                     "trace.threshold = bright: must be a grey in (0, 1] or adaptive");
+  expect_input_error(run_strand("trace " + page + " --upscale 9 -o x.svg", dir), "trace.upscale");
+  expect_input_error(run_strand("trace " + page + " --highpass -1 -o x.svg", dir), "trace.highpass");
+  EXPECT_FALSE(exists(dir + "/x.svg"));
+}
+
+// Issue 19: valid SVG that stopped the whole plot (dy="1em", x="50%", font-size="inherit")
+// plots, and an Illustrator sheet's classes make outlined boxes and connector strokes.
+TEST(PlotCli, RelativeLengthsAndIllustratorStyleSheetsPlot) {
+  const auto dir = fresh_dir("plotcss");
+  slicer::write_file_atomic(dir + "/w3c.svg",
+                            "<svg xmlns='http://www.w3.org/2000/svg' width='100mm' height='50mm' viewBox='0 0 100 50'>"
+                            "<text x='50%' y='20' font-size='inherit'>A<tspan dy='1em'>b</tspan></text>"
+                            "<rect width='3q' height='4'/><line x2='10' stroke='black'/></svg>");
+  const auto none = run_strand("plot w3c.svg --text none -o a.gcode", dir);
+  ASSERT_EQ(none.exit_code, 0) << none.err;
+  EXPECT_NE(none.out.find("<rect> width = \"3q\": not a length (element skipped) (1)"), std::string::npos) << none.out;
+  ASSERT_EQ(run_strand("plot w3c.svg -o b.gcode", dir).exit_code, 0);
+  const auto css = run_strand("plot '" + kSamples + "illustrator_css.svg' -o c.gcode --report c.json", dir);
+  ASSERT_EQ(css.exit_code, 0) << css.err;
+  const auto report = nlohmann::json::parse(slurp(dir + "/c.json"));
+  EXPECT_EQ(report["skipped_elements"], nlohmann::json::array());
+}
+
 TEST(PlotCli, ConcentricFillsPassCheckOnEveryPlotter) {
   const auto dir = fresh_dir("concentric");
   for (const char* machine : kPlotters) {

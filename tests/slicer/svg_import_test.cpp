@@ -14,9 +14,11 @@
 namespace strand::slicer {
 namespace {
 
-std::string doc(const std::string& body, const std::string& root = "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 100 100\"") {
-  return "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" " + root +
-         " fill=\"none\" stroke=\"black\">" + body + "</svg>";
+std::string doc(
+    const std::string& body,
+    const std::string& root = "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 100 100\"") {
+  return "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" " +
+         root + " fill=\"none\" stroke=\"black\">" + body + "</svg>";
 }
 
 Polyline only_polyline(const SvgDrawing& d, double tol = 0.01) {
@@ -26,7 +28,8 @@ Polyline only_polyline(const SvgDrawing& d, double tol = 0.01) {
 }
 
 TEST(SvgImport, CircleRadiusWithinTolerance) {
-  const auto pl = only_polyline(import_svg(doc("<circle cx=\"50\" cy=\"40\" r=\"20\"/>"), "t"), 0.01);
+  const auto pl =
+      only_polyline(import_svg(doc("<circle cx=\"50\" cy=\"40\" r=\"20\"/>"), "t"), 0.01);
   for (const auto& p : pl) EXPECT_NEAR((p - Vec2(50, 40)).norm(), 20.0, 0.01);
   EXPECT_LT((pl.front() - pl.back()).norm(), 1e-9);
 }
@@ -34,7 +37,8 @@ TEST(SvgImport, CircleRadiusWithinTolerance) {
 TEST(SvgImport, NestedTransformsBakeIntoRectCorners) {
   const auto pl = only_polyline(import_svg(
       doc("<g transform=\"translate(10 20)\"><g transform=\"rotate(90 5 5)\">"
-          "<rect x=\"0\" y=\"0\" width=\"10\" height=\"4\" transform=\"scale(2 1)\"/></g></g>"), "t"));
+          "<rect x=\"0\" y=\"0\" width=\"10\" height=\"4\" transform=\"scale(2 1)\"/></g></g>"),
+      "t"));
   // rect (0,0)-(20,4) after scale; rotate 90 about (5,5): (x,y) -> (10 - y, x); then +(10,20)
   const std::vector<Vec2> want = {{20, 20}, {20, 40}, {16, 40}, {16, 20}, {20, 20}};
   ASSERT_EQ(pl.size(), want.size());
@@ -42,15 +46,20 @@ TEST(SvgImport, NestedTransformsBakeIntoRectCorners) {
 }
 
 TEST(SvgImport, SkewAndMatrixMatchTheirDefinitions) {
-  const auto a = only_polyline(import_svg(doc("<line x1=\"0\" y1=\"10\" x2=\"0\" y2=\"20\" transform=\"skewX(45)\"/>"), "t"));
+  const auto a = only_polyline(import_svg(
+      doc("<line x1=\"0\" y1=\"10\" x2=\"0\" y2=\"20\" transform=\"skewX(45)\"/>"), "t"));
   EXPECT_LT((a[1] - Vec2(20, 20)).norm(), 1e-9);
-  const auto b = only_polyline(import_svg(doc("<line x1=\"1\" y1=\"2\" x2=\"3\" y2=\"4\" transform=\"matrix(1 2 3 4 5 6)\"/>"), "t"));
+  const auto b = only_polyline(import_svg(
+      doc("<line x1=\"1\" y1=\"2\" x2=\"3\" y2=\"4\" transform=\"matrix(1 2 3 4 5 6)\"/>"), "t"));
   EXPECT_LT((b[0] - Vec2(1 + 6 + 5, 2 + 8 + 6)).norm(), 1e-9);
 }
 
 TEST(SvgImport, RelativeAndAbsolutePathsGiveTheSameGeometry) {
-  const std::string abs = "M10 10 L20 10 H30 V20 C30 30 40 30 40 20 S50 10 50 20 Q55 30 60 20 T70 20 A5 8 30 0 1 80 25 Z";
-  const std::string rel = "m10 10 l10 0 h10 v10 c0 10 10 10 10 0 s10 -10 10 0 q5 10 10 0 t10 0 a5 8 30 0 1 10 5 z";
+  const std::string abs =
+      "M10 10 L20 10 H30 V20 C30 30 40 30 40 20 S50 10 50 20 Q55 30 60 20 T70 20 A5 8 30 0 1 80 25 "
+      "Z";
+  const std::string rel =
+      "m10 10 l10 0 h10 v10 c0 10 10 10 10 0 s10 -10 10 0 q5 10 10 0 t10 0 a5 8 30 0 1 10 5 z";
   const auto a = only_polyline(import_svg(doc("<path d=\"" + abs + "\"/>"), "t"));
   const auto r = only_polyline(import_svg(doc("<path d=\"" + rel + "\"/>"), "t"));
   ASSERT_EQ(a.size(), r.size());
@@ -74,25 +83,34 @@ TEST(SvgImport, ArcRadiiTooSmallAreScaledUp) {
 }
 
 TEST(SvgImport, UnitsAndViewBoxScaleToMillimetres) {
-  const auto in = import_svg(doc("<line x1=\"0\" y1=\"0\" x2=\"96\" y2=\"0\"/>", "width=\"2in\" height=\"1in\""), "t");
+  const auto in = import_svg(
+      doc("<line x1=\"0\" y1=\"0\" x2=\"96\" y2=\"0\"/>", "width=\"2in\" height=\"1in\""), "t");
   EXPECT_NEAR(flatten(in.shapes[0].paths[0], 0.01)[1].x(), 25.4, 1e-9);
   EXPECT_NEAR(in.page_mm.x(), 50.8, 1e-9);
-  const auto pt = import_svg(doc("<line x1=\"0\" y1=\"0\" x2=\"72pt\" y2=\"0\"/>", "width=\"100\" height=\"100\""), "t");
+  const auto pt = import_svg(
+      doc("<line x1=\"0\" y1=\"0\" x2=\"72pt\" y2=\"0\"/>", "width=\"100\" height=\"100\""), "t");
   EXPECT_NEAR(flatten(pt.shapes[0].paths[0], 0.01)[1].x(), 25.4, 1e-9);
   // meet: a 200x100 viewBox in a 100x100 mm page scales by 0.5 and centres vertically
-  const auto vb = import_svg(doc("<line x1=\"0\" y1=\"0\" x2=\"200\" y2=\"0\"/>", "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 200 100\""), "t");
+  const auto vb = import_svg(doc("<line x1=\"0\" y1=\"0\" x2=\"200\" y2=\"0\"/>",
+                                 "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 200 100\""),
+                             "t");
   const auto pl = flatten(vb.shapes[0].paths[0], 0.01);
   EXPECT_LT((pl[0] - Vec2(0, 25)).norm(), 1e-9);
   EXPECT_LT((pl[1] - Vec2(100, 25)).norm(), 1e-9);
-  const auto none = import_svg(doc("<line x1=\"0\" y1=\"100\" x2=\"200\" y2=\"100\"/>", "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 200 100\" preserveAspectRatio=\"none\""), "t");
+  const auto none = import_svg(
+      doc("<line x1=\"0\" y1=\"100\" x2=\"200\" y2=\"100\"/>",
+          "width=\"100mm\" height=\"100mm\" viewBox=\"0 0 200 100\" preserveAspectRatio=\"none\""),
+      "t");
   EXPECT_LT((flatten(none.shapes[0].paths[0], 0.01)[0] - Vec2(0, 100)).norm(), 1e-9);
 }
 
 TEST(SvgImport, UseReferencesHiddenElementsAndTextKept) {
-  const auto d = import_svg(doc("<defs><rect id=\"r\" width=\"5\" height=\"5\"/></defs>"
-                                "<use xlink:href=\"#r\" x=\"10\" y=\"20\"/>"
-                                "<circle r=\"3\" style=\"display: none\"/><g display=\"none\"><line x2=\"5\"/></g>"
-                                "<line x2=\"5\" visibility=\"hidden\"/><text>hi</text>"), "t");
+  const auto d = import_svg(
+      doc("<defs><rect id=\"r\" width=\"5\" height=\"5\"/></defs>"
+          "<use xlink:href=\"#r\" x=\"10\" y=\"20\"/>"
+          "<circle r=\"3\" style=\"display: none\"/><g display=\"none\"><line x2=\"5\"/></g>"
+          "<line x2=\"5\" visibility=\"hidden\"/><text>hi</text>"),
+      "t");
   ASSERT_EQ(d.shapes.size(), 1u);
   EXPECT_LT((flatten(d.shapes[0].paths[0], 0.01)[0] - Vec2(10, 20)).norm(), 1e-9);
   // text is kept as characters for text_layout to draw (tests/slicer/text_layout_test.cpp)
@@ -102,7 +120,8 @@ TEST(SvgImport, UseReferencesHiddenElementsAndTextKept) {
 }
 
 TEST(SvgImport, GroupIdsAreCollectedFromEveryAncestor) {
-  const auto d = import_svg(doc("<g id=\"m3\"><g id=\"inner\"><line x2=\"5\" stroke=\"#F00\"/></g></g>"), "t");
+  const auto d =
+      import_svg(doc("<g id=\"m3\"><g id=\"inner\"><line x2=\"5\" stroke=\"#F00\"/></g></g>"), "t");
   ASSERT_EQ(d.shapes.size(), 1u);
   EXPECT_EQ(d.shapes[0].group_ids, (std::vector<std::string>{"inner", "m3"}));
   EXPECT_EQ(d.shapes[0].stroke_color, "#ff0000");
@@ -234,9 +253,72 @@ TEST(SvgImport, UseBudgetCountsCopiesNotPlainElements) {
 
 TEST(SvgImport, BadInputThrowsInputError) {
   EXPECT_THROW(import_svg("<svg><g></svg>", "t"), InputError);
-  EXPECT_THROW(import_svg(doc("<line x2=\"5furlong\"/>"), "t"), InputError);
+  EXPECT_THROW(
+      import_svg("<svg xmlns='http://www.w3.org/2000/svg' width='10furlong' height='1'/>", "t"),
+      InputError);
   EXPECT_THROW(import_svg(doc("<use href=\"#nope\"/>"), "t"), InputError);
   EXPECT_THROW(import_svg("<html/>", "t"), InputError);
+}
+
+// em of the element's own font-size, ex of half of it, % of the viewport's width (x, cx,
+// width, rx, x1, x2), height (y, cy, height, ry, y1, y2) or normalised diagonal (r,
+// stroke-width), on a 200 x 100 viewport in mm (one user unit = 1 mm).
+TEST(SvgImport, RelativeLengthsOnEveryAttributeKind) {
+  const std::string root = "width=\"200mm\" height=\"100mm\" viewBox=\"0 0 200 100\"";
+  const auto corners = [&](const std::string& body) {
+    const auto d = import_svg(doc(body, root), "t");
+    EXPECT_EQ(d.skipped, std::vector<std::string>{});
+    return flatten(d.shapes.at(0).paths.at(0), 0.01);
+  };
+  const double diag = std::sqrt((200.0 * 200 + 100.0 * 100) / 2);
+  // rect: x 10% of 200, y 1em of 10 = 10, width 2em = 20, height 50% of 100
+  auto r = corners("<rect font-size=\"10\" x=\"10%\" y=\"1em\" width=\"2em\" height=\"50%\"/>");
+  EXPECT_LT((r[0] - Vec2(20, 10)).norm(), 1e-9);
+  EXPECT_LT((r[2] - Vec2(40, 60)).norm(), 1e-9);
+  // circle: cx 25% of width, cy 4ex of 10 (ex = 0.5em), r 10% of the diagonal
+  auto c = corners("<circle style=\"font-size:10px\" cx=\"25%\" cy=\"4ex\" r=\"10%\"/>");
+  for (const auto& p : c) EXPECT_NEAR((p - Vec2(50, 20)).norm(), 0.1 * diag, 0.01);
+  // ellipse rx % of width, ry em; line ends in %; font-size inherited from the group
+  auto e = corners("<g font-size=\"4\"><ellipse cx=\"100\" cy=\"50\" rx=\"5%\" ry=\"1.5em\"/></g>");
+  double max_x = 0, max_y = 0;
+  for (const auto& p : e) max_x = std::max(max_x, p.x() - 100), max_y = std::max(max_y, p.y() - 50);
+  EXPECT_NEAR(max_x, 10.0, 0.01);
+  EXPECT_NEAR(max_y, 6.0, 0.01);
+  auto l = corners("<line x1=\"50%\" y1=\"50%\" x2=\"100%\" y2=\"2em\"/>");
+  EXPECT_LT((l[0] - Vec2(100, 50)).norm(), 1e-9);
+  EXPECT_LT((l[1] - Vec2(200, 32)).norm(), 1e-9);  // the default font-size is 16
+  // rx in em on a rect (ry follows rx), stroke-width in % and em, use x/y in %
+  const auto d =
+      import_svg(doc("<line id=\"a\" x2=\"1\" stroke-width=\"1%\"/>"
+                     "<line id=\"b\" x2=\"1\" font-size=\"8\" style=\"stroke-width:0.25em\"/>"
+                     "<defs><line id=\"u\" x2=\"1\"/></defs><use href=\"#u\" x=\"10%\" y=\"10%\"/>",
+                     root),
+                 "t");
+  ASSERT_EQ(d.shapes.size(), 3u);
+  EXPECT_NEAR(d.shapes[0].stroke_width_mm, 0.01 * diag, 1e-9);
+  EXPECT_NEAR(d.shapes[1].stroke_width_mm, 2.0, 1e-9);
+  EXPECT_LT((d.shapes[2].paths[0].start - Vec2(20, 10)).norm(), 1e-9);
+}
+
+// The W3C regression of issue 19: dy="1em", x="50%" and font-size="inherit" are valid SVG
+// and import; an unknown unit skips only its element, with a note naming it.
+TEST(SvgImport, UnknownUnitsSkipTheirElementWithANote) {
+  const auto d =
+      import_svg(doc("<text x=\"50%\" font-size=\"inherit\"><tspan dy=\"1em\">a</tspan></text>"
+                     "<rect id=\"bad\" width=\"5furlong\" height=\"1\"/><line x2=\"5\"/>"
+                     "<line x2=\"5\" stroke-width=\"2q\"/><text font-size=\"2q\" x=\"1\">b</text>"),
+                 "t");
+  ASSERT_EQ(d.shapes.size(), 2u);  // both lines; the second keeps the inherited stroke-width
+  EXPECT_NEAR(d.shapes[1].stroke_width_mm, 1.0, 1e-9);
+  ASSERT_EQ(d.texts.size(), 2u);
+  EXPECT_NEAR(*d.texts[0].chars.at(0).x, 50.0, 1e-9);
+  EXPECT_NEAR(d.texts[0].chars.at(0).dy, 16.0, 1e-9);
+  EXPECT_NEAR(d.texts[1].chars.at(0).style.font_size, 16.0, 1e-9);
+  EXPECT_EQ(d.skipped,
+            (std::vector<std::string>{
+                "<line> stroke-width = \"2q\": not valid (left out) (1)",
+                "<rect id=\"bad\"> width = \"5furlong\": not a length (element skipped) (1)",
+                "<text> font-size = \"2q\": not valid (left out) (1)"}));
 }
 
 }  // namespace

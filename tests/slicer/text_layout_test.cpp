@@ -5,19 +5,25 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 extern "C" {
 #include <hersheyfont.h>
 }
 
 #include "slicer/hershey_font.h"
 #include "slicer/input_error.h"
+#include "slicer/outline_font.h"
 #include "slicer/svg_export.h"
 
 namespace strand::slicer {
 namespace {
 
 std::string doc(const std::string& body) {
-  return "<svg xmlns='http://www.w3.org/2000/svg' width='200mm' height='100mm' viewBox='0 0 200 100'>" + body + "</svg>";
+  return "<svg xmlns='http://www.w3.org/2000/svg' width='200mm' height='100mm' viewBox='0 0 200 "
+         "100'>" +
+         body + "</svg>";
 }
 
 TextDrawing hershey(const std::string& body, const std::string& font = "hershey:futural") {
@@ -38,7 +44,8 @@ std::vector<Vec2> vertices(const TextDrawing& t) {
 
 // The same string laid out by hand from libhersheyfont's raw glyphs: pen at (x0, y0) in
 // mm, size in mm, SVG y down.
-std::vector<Vec2> expected(const std::string& s, const char* font, double x0, double y0, double size) {
+std::vector<Vec2> expected(const std::string& s, const char* font, double x0, double y0,
+                           double size) {
   hershey_font* f = hershey_font_load(font);
   EXPECT_NE(f, nullptr);
   std::vector<Vec2> out;
@@ -48,7 +55,8 @@ std::vector<Vec2> expected(const std::string& s, const char* font, double x0, do
     const hershey_glyph* g = hershey_font_glyph(f, ch);
     for (const hershey_path* p = g->paths; p; p = p->next) {
       if (p->nverts < 2) continue;
-      for (int i = 0; i < p->nverts; ++i) out.emplace_back(x + p->verts[i].x * k, y0 - p->verts[i].y * k);
+      for (int i = 0; i < p->nverts; ++i)
+        out.emplace_back(x + p->verts[i].x * k, y0 - p->verts[i].y * k);
     }
     x += g->width * k;
   }
@@ -79,16 +87,21 @@ TEST(TextLayout, StrokesAreTheHersheyGlyphsAtSizeAndPosition) {
 }
 
 TEST(TextLayout, AnchorsShiftEachChunkByItsWidth) {
-  for (const auto& [anchor, factor] : std::vector<std::pair<std::string, double>>{{"middle", 0.5}, {"end", 1.0}}) {
-    const auto t = hershey("<text x='100' y='40' font-size='10' text-anchor='" + anchor + "' >AbC</text>", "hershey:rowmans");
-    expect_same(vertices(t), expected("AbC", "rowmans", 100 - factor * width_of("AbC", "rowmans", 10), 40, 10));
+  for (const auto& [anchor, factor] :
+       std::vector<std::pair<std::string, double>>{{"middle", 0.5}, {"end", 1.0}}) {
+    const auto t =
+        hershey("<text x='100' y='40' font-size='10' text-anchor='" + anchor + "' >AbC</text>",
+                "hershey:rowmans");
+    expect_same(vertices(t),
+                expected("AbC", "rowmans", 100 - factor * width_of("AbC", "rowmans", 10), 40, 10));
   }
 }
 
 TEST(TextLayout, TspanOffsetsAndAbsolutePositions) {
   // "ab" at (10, 20); tspan "c" shifted by dx=5 dy=-3; tspan "d" starts a new chunk at x=60
-  const auto t = hershey("<text x='10' y='20' font-size='8'>ab<tspan dx='5' dy='-3'>c</tspan>"
-                         "<tspan x='60' y='70' text-anchor='end'>d</tspan></text>");
+  const auto t = hershey(
+      "<text x='10' y='20' font-size='8'>ab<tspan dx='5' dy='-3'>c</tspan>"
+      "<tspan x='60' y='70' text-anchor='end'>d</tspan></text>");
   std::vector<Vec2> want = expected("ab", "futural", 10, 20, 8);
   const auto c = expected("c", "futural", 10 + width_of("ab", "futural", 8) + 5, 17, 8);
   const auto d = expected("d", "futural", 60 - width_of("d", "futural", 8), 70, 8);
@@ -99,7 +112,9 @@ TEST(TextLayout, TspanOffsetsAndAbsolutePositions) {
 
 TEST(TextLayout, PerCharacterListsAndInheritedFontSize) {
   // x list places each character; font-size comes from the group, tspan scales by 150%
-  const auto t = hershey("<g style='font-size:10px'><text x='10 30' y='50'>AB<tspan font-size='150%'>C</tspan></text></g>");
+  const auto t = hershey(
+      "<g style='font-size:10px'><text x='10 30' y='50'>AB<tspan "
+      "font-size='150%'>C</tspan></text></g>");
   std::vector<Vec2> want = expected("A", "futural", 10, 50, 10);
   const auto b = expected("B", "futural", 30, 50, 10);
   const auto c = expected("C", "futural", 30 + width_of("B", "futural", 10), 50, 15);
@@ -110,7 +125,9 @@ TEST(TextLayout, PerCharacterListsAndInheritedFontSize) {
 
 TEST(TextLayout, TransformsApplyToTheGlyphs) {
   // rotate(90) about the origin then translate: (x, y) -> (100 - y, x)
-  const auto t = hershey("<g transform='translate(100 0)'><text transform='rotate(90)' x='10' y='5' font-size='10'>L</text></g>");
+  const auto t = hershey(
+      "<g transform='translate(100 0)'><text transform='rotate(90)' x='10' y='5' "
+      "font-size='10'>L</text></g>");
   auto want = expected("L", "futural", 10, 5, 10);
   for (auto& p : want) p = Vec2(100 - p.y(), p.x());
   expect_same(vertices(t), want);
@@ -142,7 +159,8 @@ TEST(TextLayout, MissingGlyphsAreCounted) {
 }
 
 TEST(TextLayout, OutlineFontsGiveFilledClosedContours) {
-  const auto d = import_svg(doc("<text x='10' y='50' font-size='20' font-family='DejaVu Sans'>Ob</text>"), "t.svg");
+  const auto d = import_svg(
+      doc("<text x='10' y='50' font-size='20' font-family='DejaVu Sans'>Ob</text>"), "t.svg");
   const auto t = layout_text(d.texts, {TextMode::Outline, ""});
   ASSERT_EQ(t.shapes.size(), 1u);
   EXPECT_TRUE(t.shapes[0].filled);
@@ -165,7 +183,8 @@ TEST(TextLayout, OutlineFontsGiveFilledClosedContours) {
 TEST(TextLayout, FontsThatAreNotInstalledAreRefused) {
   EXPECT_THROW(hershey("<text x='0' y='10'>a</text>", "hershey:nosuchfont"), InputError);
   EXPECT_THROW(hershey("<text x='0' y='10'>a</text>", "hershey:../../etc/passwd"), InputError);
-  const auto d = import_svg(doc("<text x='0' y='10' font-family='No Such Font Family'>a</text>"), "t.svg");
+  const auto d =
+      import_svg(doc("<text x='0' y='10' font-family='No Such Font Family'>a</text>"), "t.svg");
   try {
     layout_text(d.texts, {TextMode::Outline, ""});
     FAIL();
@@ -173,8 +192,132 @@ TEST(TextLayout, FontsThatAreNotInstalledAreRefused) {
     EXPECT_NE(std::string(e.what()).find("No Such Font Family"), std::string::npos);
   }
   // a list falls back to the next installed family, as CSS does
-  const auto l = import_svg(doc("<text x='0' y='10' font-family=\"'No Such', DejaVu Serif\">a</text>"), "t.svg");
+  const auto l = import_svg(
+      doc("<text x='0' y='10' font-family=\"'No Such', DejaVu Serif\">a</text>"), "t.svg");
   EXPECT_EQ(layout_text(l.texts, {TextMode::Outline, ""}).fonts.at(0).rfind("DejaVu Serif", 0), 0u);
+}
+
+// Hershey fonts have a 32-unit body: the underline lies 4 units below the baseline, the
+// line-through 7 units above it, the overline 24 units above it, across the whole run.
+TEST(TextLayout, DecorationsAreStrokesAtTheFontsMetrics) {
+  const auto t = hershey(
+      "<text x='10' y='50' font-size='32' text-decoration='underline'>AB"
+      "<tspan text-decoration='line-through overline'>C</tspan></text>");
+  ASSERT_EQ(t.shapes.size(), 1u);
+  const auto& paths = t.shapes[0].paths;
+  const std::size_t glyph_paths =
+      hershey("<text x='10' y='50' font-size='32'>ABC</text>").shapes[0].paths.size();
+  // the glyphs, then one underline under AB and C (C keeps its parent's underline), then
+  // C's overline and line-through
+  ASSERT_EQ(paths.size(), glyph_paths + 4);
+  const double ab = width_of("AB", "futural", 32), abc = width_of("ABC", "futural", 32);
+  const std::vector<std::vector<Vec2>> want = {{{10, 54}, {10 + ab, 54}},
+                                               {{10 + ab, 54}, {10 + abc, 54}},
+                                               {{10 + ab, 26}, {10 + abc, 26}},
+                                               {{10 + ab, 43}, {10 + abc, 43}}};
+  for (std::size_t k = 0; k < want.size(); ++k) {
+    const SubPath& line = paths[glyph_paths + k];
+    ASSERT_EQ(line.pieces.size(), 1u);
+    EXPECT_LT((line.start - want[k][0]).norm(), 1e-9) << k;
+    EXPECT_LT((line.pieces[0].end() - want[k][1]).norm(), 1e-9) << k;
+  }
+}
+
+TEST(TextLayout, OutlineUnderlineIsABarBelowTheBaseline) {
+  const auto d = import_svg(doc("<text x='10' y='50' font-size='20' font-family='DejaVu Sans' "
+                                "style='text-decoration:underline'>ab</text>"),
+                            "t.svg");
+  const auto t = layout_text(d.texts, {TextMode::Outline, ""});
+  ASSERT_EQ(t.shapes.size(), 1u);
+  const SubPath& bar = t.shapes[0].paths.back();
+  ASSERT_TRUE(bar.closed);
+  const auto pts = flatten(bar, 0.001);
+  double top = INFINITY, bottom = -INFINITY, left = INFINITY;
+  for (const auto& q : pts)
+    top = std::min(top, q.y()), bottom = std::max(bottom, q.y()), left = std::min(left, q.x());
+  // at the font's own metrics (FreeType's, from the post table): below the baseline, thin
+  const Font f = load_outline_font("DejaVu Sans", "normal", "normal", U"ab");
+  const double em = 20 / f.units_per_em;
+  EXPECT_LT(f.underline_position, 0.0);
+  EXPECT_GT(f.underline_position, -0.2 * f.units_per_em);
+  EXPECT_NEAR((top + bottom) / 2, 50 - f.underline_position * em, 1e-9);
+  EXPECT_NEAR(bottom - top, f.underline_thickness * em, 1e-9);
+  EXPECT_NEAR(left, 10.0, 1e-9);
+}
+
+// baseline-shift moves a tspan's glyphs (super: +0.4 em, sub: -0.2 em, lengths, % of the
+// font-size) without moving the characters after it.
+TEST(TextLayout, BaselineShiftRaisesAndLowersTspans) {
+  const auto t = hershey(
+      "<text x='10' y='50' font-size='10'>A<tspan baseline-shift='super' font-size='5'>2"
+      "</tspan>B<tspan baseline-shift='sub'>c</tspan><tspan baseline-shift='-3'>d</tspan>"
+      "<tspan baseline-shift='50%'>e<tspan baseline-shift='1'>f</tspan></tspan></text>");
+  std::vector<Vec2> want = expected("A", "futural", 10, 50, 10);
+  double x = 10 + width_of("A", "futural", 10);
+  const auto add = [&](const char* s, double y, double size) {
+    const auto g = expected(s, "futural", x, y, size);
+    want.insert(want.end(), g.begin(), g.end());
+    x += width_of(s, "futural", size);
+  };
+  add("2", 50 - 0.4 * 5, 5);
+  add("B", 50, 10);
+  add("c", 50 + 0.2 * 10, 10);
+  add("d", 53, 10);
+  add("e", 45, 10);
+  add("f", 44, 10);  // nested shifts add up
+  expect_same(
+      vertices(hershey(
+          "<text x='10' y='50' font-size='10'>A<tspan baseline-shift='super' font-size='5'>2"
+          "</tspan>B<tspan baseline-shift='sub'>c</tspan><tspan baseline-shift='-3'>d</tspan>"
+          "<tspan baseline-shift='50%'>e<tspan baseline-shift='1'>f</tspan></tspan></text>")),
+      want);
+  EXPECT_EQ(t.glyphs, 7);
+}
+
+TEST(TextLayout, LetterAndWordSpacingWidenTheAdvance) {
+  const auto t = hershey(
+      "<text x='10' y='50' font-size='10' letter-spacing='2' word-spacing='1em'>A B"
+      "<tspan letter-spacing='normal'>CD</tspan></text>");
+  std::vector<Vec2> want;
+  double x = 10;
+  const auto add = [&](const char* s, double extra) {
+    const auto g = expected(s, "futural", x, 50, 10);
+    want.insert(want.end(), g.begin(), g.end());
+    x += width_of(s, "futural", 10) + extra;
+  };
+  add("A", 2);
+  add(" ", 2 + 10);
+  add("B", 2);
+  add("C", 0);
+  add("D", 0);
+  expect_same(vertices(t), want);
+}
+
+// A drawing written the way the W3C SVG 1.1 text tests are (text-tspan-01, text-align-01):
+// positions in em and %, inherited font sizes, anchors; each glyph within 0.2 mm of the
+// position computed by hand.
+TEST(TextLayout, W3cStyleFixturePlacesEveryLine) {
+  std::ifstream in(std::string(STRAND_SOURCE_DIR) + "/tests/data/text-w3c-style.svg");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const auto d = import_svg(ss.str(), "text-w3c-style.svg");
+  EXPECT_EQ(d.skipped, std::vector<std::string>{});
+  const auto t = layout_text(d.texts, {TextMode::Hershey, "hershey:futural"});
+  ASSERT_EQ(t.elements, 2);  // the third text is unpainted
+  // viewBox 0 0 480 360 on 120 x 90 mm: 0.25 mm per user unit
+  const double k = 0.25;
+  // line 1: x = 10% (48), y = 2em of 24 (48); "Text" at size 24
+  std::vector<Vec2> want = expected("Text", "futural", 48 * k, 48 * k, 24 * k);
+  // line 2: the tspan's size is 150% = 36, its dy="1.5em" of its own size (54) below line 1
+  const auto l2 = expected("Big", "futural", 48 * k, (48 + 54) * k, 36 * k);
+  want.insert(want.end(), l2.begin(), l2.end());
+  // line 3: text-anchor middle at 50% (240), y = 75% (270), size 24
+  const double w3 = width_of("mid", "futural", 24 * k);
+  const auto l3 = expected("mid", "futural", 240 * k - w3 / 2, 270 * k, 24 * k);
+  want.insert(want.end(), l3.begin(), l3.end());
+  const auto got = vertices(t);
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t i = 0; i < got.size(); ++i) EXPECT_LT((got[i] - want[i]).norm(), 0.2) << i;
 }
 
 TEST(SvgExport, WrittenTextReadsBackToTheSameStrokes) {

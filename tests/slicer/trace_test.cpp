@@ -6,7 +6,9 @@
 #include <cairo.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "slicer/image.h"
 #include "slicer/input_error.h"
@@ -116,6 +118,125 @@ TEST(Trace, LevelsSplitAGradientIntoNestedLayersInOrder) {
       EXPECT_LT(right_edge(t.levels[k]), right_edge(t.levels[k - 1]));
     }
   }
+}
+
+// A page lit unevenly (paper from grey 250 at the top left to 90 at the bottom right) with
+// six letters 70 greys darker than the paper around them: I bars and O rings. On the right
+// the paper is darker than the letters on the left, so no single threshold finds them all.
+GreyImage uneven_page() {
+  GreyImage g;
+  g.width = 240;
+  g.height = 120;
+  g.grey.resize(240 * 120);
+  for (int y = 0; y < g.height; ++y) {
+    for (int x = 0; x < g.width; ++x) {
+      const double paper = 250 - 120.0 * x / 239 - 40.0 * y / 119;
+      bool ink = false;
+      for (int k = 0; k < 6; ++k) {
+        const double dx = x + 0.5 - (20 + 40 * k), dy = y + 0.5 - 60;
+        ink |= k % 2 == 0 ? std::abs(dx) <= 2.5 && std::abs(dy) <= 15
+                          : std::hypot(dx, dy) >= 8 && std::hypot(dx, dy) <= 12;
+      }
+      g.grey[static_cast<std::size_t>(y) * g.width + x] =
+          static_cast<std::uint8_t>(std::lround(paper - (ink ? 70 : 0)));
+    }
+  }
+  return g;
+}
+
+// Each outline's bounding-box centre and size, in pixels (pixel_mm = 1).
+struct Box {
+  Vec2 centre, size;
+};
+std::vector<Box> boxes(const Trace& t) {
+  std::vector<Box> out;
+  for (const auto& level : t.levels) {
+    for (const auto& p : level.paths) {
+      Vec2 lo(INFINITY, INFINITY), hi(-INFINITY, -INFINITY);
+      for (const auto& q : flatten(p, 0.01)) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+      out.push_back({(lo + hi) / 2, hi - lo});
+    }
+  }
+  return out;
+}
+
+// Every outline belongs to a letter: one per I (6 x 30 px), two per O (24 px and its 16 px
+// counter), centred on the letter within 0.75 px, its size within 1.5 px (the edge grey
+// falls on either side of the threshold).
+void expect_letters(const Trace& t) {
+  const std::vector<Box> b = boxes(t);
+  ASSERT_EQ(b.size(), 9u);
+  for (int k = 0; k < 6; ++k) {
+    const Vec2 centre(20 + 40 * k, 60);
+    std::vector<Box> mine;
+    for (const auto& box : b) {
+      if ((box.centre - centre).norm() < 0.75) mine.push_back(box);
+    }
+    ASSERT_EQ(mine.size(), k % 2 == 0 ? 1u : 2u) << "letter " << k;
+    if (k % 2 == 0) {
+      EXPECT_NEAR(mine[0].size.x(), 6, 1.5);
+      EXPECT_NEAR(mine[0].size.y(), 30, 1.5);
+    } else {
+      const double big = std::max(mine[0].size.x(), mine[1].size.x());
+      const double small = std::min(mine[0].size.x(), mine[1].size.x());
+      EXPECT_NEAR(big, 24, 1.5);
+      EXPECT_NEAR(small, 16, 1.5);
+    }
+  }
+}
+
+TEST(Trace, HighPassFilterTracesAnUnevenlyLitPageToItsLetters) {
+  const GreyImage page = uneven_page();
+  TraceOptions o;
+  o.pixel_mm = 1.0;
+  // one global threshold (Otsu's) merges the dark right half of the page into one region
+  const std::vector<Box> global = boxes(trace_image(page, o));
+  EXPECT_TRUE(
+      std::any_of(global.begin(), global.end(), [](const Box& b) { return b.size.x() > 60; }));
+  o.highpass_px = 8;
+  o.upscale = 2;
+  expect_letters(trace_image(page, o));
+  o.blur_px = 1;
+  expect_letters(trace_image(page, o));
+}
+
+TEST(Trace, AdaptiveThresholdTracesAnUnevenlyLitPageToItsLetters) {
+  TraceOptions o;
+  o.pixel_mm = 1.0;
+  o.adaptive = true;
+  expect_letters(trace_image(uneven_page(), o));
+}
+
+TEST(Trace, FiltersKeepAFlatPageFlatAndScaleBySampling) {
+  GreyImage g;
+  g.width = 4;
+  g.height = 2;
+  g.grey = {200, 200, 200, 200, 200, 200, 200, 200};
+  TraceOptions o;
+  o.highpass_px = 3;
+  const GreyImage h = filter_image(g, o);
+  EXPECT_EQ(h.grey, std::vector<std::uint8_t>(8, 128));  // paper at mid grey
+  o = TraceOptions{};
+  g.grey = {0, 100, 100, 100, 0, 100, 100, 100};
+  o.upscale = 2;
+  const GreyImage u = filter_image(g, o);
+  ASSERT_EQ(u.width, 8);
+  ASSERT_EQ(u.height, 4);
+  // bilinear between pixel centres: 0, 25, 75, 100, ...
+  EXPECT_EQ(std::vector<std::uint8_t>(u.grey.begin(), u.grey.begin() + 8),
+            (std::vector<std::uint8_t>{0, 25, 75, 100, 100, 100, 100, 100}));
+  o.upscale = 9;
+  EXPECT_THROW(trace_image(g, o), InputError);
+  o.upscale = 8;
+  GreyImage huge;
+  huge.width = 4096;
+  huge.height = 4096;
+  huge.grey.assign(4096u * 4096u, 255);
+  EXPECT_THROW(trace_image(huge, o), InputError);  // 1 Gpx after upscaling
+  o.upscale = 1;
+  o.adaptive = true;
+  o.levels = 2;
+  EXPECT_THROW(trace_image(g, o), InputError);
 }
 
 TEST(Trace, OtsuSplitsTwoGreysInTheMiddle) {
