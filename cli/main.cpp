@@ -55,6 +55,7 @@ int run(int argc, char** argv) {
   strand::cli::add_sweep_command(app, action);
   strand::cli::add_preview_command(app, action);
   strand::cli::add_slice_command(app, action);
+  strand::cli::add_mesh_command(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -2,11 +2,10 @@
 // slice job, files written atomically, a short summary printed.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
-
-#include <filesystem>
 
 #include "cli/commands.h"
 #include "cli/slice_job.h"
@@ -14,10 +13,12 @@
 #include "patterns/registry.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "postprocess/preview/preview_file.h"
-#include "slicer/mesh.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
+#include "slicer/mesh.h"
+#include "slicer/mesh_check.h"
+#include "slicer/mesh_io.h"
 #include "slicer/params.h"
 
 namespace strand::cli {
@@ -73,6 +74,11 @@ nlohmann::json pattern_values(const SliceArgs& a) {
 
 int run_slice(SliceArgs a) {
   a.settings.pattern_values = pattern_values(a);
+  a.settings.on_part_size = [](const slicer::Vec3& size) {
+    char line[160];
+    std::snprintf(line, sizeof line, "part %.3f x %.3f x %.3f mm\n", size.x(), size.y(), size.z());
+    std::cout << line << std::flush;
+  };
   const SliceResult r = produce_slice(a.settings);
   slicer::OutputFiles out;
   for (const std::string& input : {a.settings.part, a.settings.onto}) {
@@ -102,6 +108,16 @@ int run_slice(SliceArgs a) {
     std::cout << "  substrate      " << a.settings.onto << ": " << line << "\n";
   }
   for (const auto& c : r.part.changes) std::cout << "  repaired       " << c << "\n";
+  if (r.scale != 1.0) {
+    char line[64];
+    std::snprintf(line, sizeof line, "%.6g", r.scale);
+    std::cout << "  scale          " << line << "\n";
+  }
+  for (const auto& n : r.notes) {
+    const bool skip = n.rfind("skipped", 0) == 0;
+    std::cout << (skip ? "  skipped        " : "  note           ") << (skip ? n.substr(8) : n)
+              << "\n";
+  }
   return 0;
 }
 
@@ -139,7 +155,15 @@ void add_slice_command(CLI::App& app, Action& action) {
   sub->add_option("--rotate", s.rotate,
                   "rotate the part about x, then y, then z: X,Y,Z [deg] (default 0,0,0)");
   sub->add_flag("--repair", s.repair,
-                "stitch borders, fill small holes, re-orient; the changes are reported");
+                "CGAL soup repair: stitch borders, fill small holes, re-orient; kept only when it "
+                "makes the mesh no worse; the changes are reported");
+  sub->add_flag("--strict", s.strict,
+                "refuse a mesh that is open, non-manifold, misoriented or self-intersecting "
+                "(default: slice the triangle soup and report what was found)");
+  sub->add_option("--scale", s.scale, "uniform scale after --mesh-units (default 1)");
+  sub->add_option("--scale-to-fit", s.scale_to_fit,
+                  "WxDxH [mm]: the largest uniform scale at which the part fits that box");
+  sub->add_option("--up", s.up, "the file's up axis: z, or y (+Y-up OBJ/STL exports; default z)");
   sub->add_option("--machine", s.machine,
                   "machine profile name or path (default deltawasp-2040-clay)");
   sub->add_option("-o,--output", s.output, "G-code file to write (default slice.gcode)");
@@ -150,6 +174,104 @@ void add_slice_command(CLI::App& app, Action& action) {
   sub->add_option("--arc-tolerance", s.arc_tolerance_mm,
                   "max chord error when arcs become G1 segments [mm] (default 0.01)");
   sub->callback([&action, a] { action = [a] { return run_slice(*a); }; });
+}
+
+namespace {
+
+struct MeshArgs {
+  std::string part;
+  std::string units = "mm";
+  bool repair = false;
+  std::string output;
+  bool json = false;
+};
+
+nlohmann::json info_json(const slicer::MeshInfo& i) {
+  return {{"size", {i.size.x(), i.size.y(), i.size.z()}},
+          {"triangles", i.triangles},
+          {"vertices", i.vertices},
+          {"shells", i.shells},
+          {"holes", i.holes},
+          {"border_edges", i.check.border_edges},
+          {"non_manifold_edges", i.check.non_manifold_edges},
+          {"non_manifold_vertices", i.non_manifold_vertices},
+          {"misoriented_edges", i.check.misoriented_edges},
+          {"self_intersections",
+           i.crossings_searched ? nlohmann::json(i.check.self_intersections) : nlohmann::json()},
+          {"volume", i.volume}};
+}
+
+std::string info_text(const slicer::MeshInfo& i, const std::string& units) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "  size           %.3f x %.3f x %.3f %s\n"
+                "  triangles      %zu (%zu vertices)\n"
+                "  shells         %zu\n"
+                "  holes          %zu (%zu border edges)\n"
+                "  non-manifold   %zu edges, %zu vertices\n"
+                "  misoriented    %zu edges\n",
+                i.size.x(), i.size.y(), i.size.z(), units.c_str(), i.triangles, i.vertices,
+                i.shells, i.holes, i.check.border_edges, i.check.non_manifold_edges,
+                i.non_manifold_vertices, i.check.misoriented_edges);
+  std::string out = buf;
+  out += i.crossings_searched
+             ? "  intersecting   " + std::to_string(i.check.self_intersections) +
+                   " pairs of triangles\n"
+             : std::string("  intersecting   not searched (the edges are not sound)\n");
+  std::snprintf(buf, sizeof buf, "  volume         %.3f %s3\n", i.volume, units.c_str());
+  return out + buf;
+}
+
+int run_mesh(const MeshArgs& a) {
+  const double mm_per_unit = slicer::mm_per_mesh_unit("mesh.mesh-units", a.units);
+  slicer::Mesh m = slicer::read_mesh_file(a.part);
+  for (slicer::Vec3& v : m.vertices_mm) v *= mm_per_unit;
+  if (!a.output.empty() && !a.repair) {
+    throw InputError("mesh.output = " + a.output + ": -o writes the repaired mesh; add --repair");
+  }
+  const slicer::MeshInfo before = slicer::mesh_info(m);
+  nlohmann::json j = {{"mesh", a.part}, {"info", info_json(before)}};
+  std::string text = "mesh " + a.part + "\n" + info_text(before, "mm");
+  if (a.repair) {
+    const slicer::PreparedMesh p =
+        slicer::prepare_mesh(m, slicer::PrepareOptions{true, false}, "mesh = " + a.part);
+    const slicer::MeshInfo after = slicer::mesh_info(p.mesh);
+    j["repairs"] = p.changes;
+    j["repaired"] = info_json(after);
+    text += "repaired\n";
+    for (const auto& c : p.changes) text += "  repaired       " + c + "\n";
+    text += info_text(after, "mm");
+    if (!a.output.empty()) {
+      const std::string ext = std::filesystem::path(a.output).extension().string();
+      if (ext != ".stl" && ext != ".STL") {
+        throw InputError("mesh.output = " + a.output + ": must end in .stl (binary STL, mm)");
+      }
+      slicer::OutputFiles out;
+      out.protect_input(a.part);
+      out.stage(a.output, slicer::binary_stl_bytes(p.mesh));
+      out.commit();
+      text += "wrote " + a.output + "\n";
+    }
+  }
+  std::cout << (a.json ? slicer::dump_json(j) + "\n" : text);
+  return 0;
+}
+
+}  // namespace
+
+void add_mesh_command(CLI::App& app, Action& action) {
+  auto a = std::make_shared<MeshArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "mesh",
+      "a mesh's size, triangles, shells, holes, non-manifold edges and vertices, "
+      "self-intersections and volume; --repair -o FILE.stl writes it repaired");
+  sub->add_option("part", a->part, "the mesh file (STL, OBJ, PLY, OFF, glTF)")->required();
+  sub->add_option("--mesh-units", a->units, "units of the mesh file: mm, cm, m, in (default mm)");
+  sub->add_flag("--repair", a->repair,
+                "CGAL soup repair, stitching and hole filling (kept only when no worse)");
+  sub->add_option("-o,--output", a->output, "write the repaired mesh here (binary STL, mm)");
+  sub->add_flag("--json", a->json, "print JSON instead of text");
+  sub->callback([&action, a] { action = [a] { return run_mesh(*a); }; });
 }
 
 }  // namespace strand::cli

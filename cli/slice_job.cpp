@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
 
 #include "cli/job_runner.h"
 #include "machines/profile.h"
@@ -43,10 +46,47 @@ slicer::MeshPlacement placement_of(const SliceSettings& s) {
   return placement;
 }
 
-slicer::PreparedMesh load_part(const SliceSettings& s) {
+// "0.5" -> 0.5 for --scale; throws naming slice.scale outside (0, 1000].
+void check_scale(double scale) {
+  if (!(scale > 0.0 && scale <= 1000.0)) {
+    throw InputError("slice.scale = " + slicer::short_number(scale) + ": must be in (0, 1000]");
+  }
+}
+
+std::string size_text(const slicer::Vec3& size) {
+  char buf[128];
+  std::snprintf(buf, sizeof buf, "%.3f x %.3f x %.3f mm", size.x(), size.y(), size.z());
+  return buf;
+}
+
+std::string mm_text(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3f", v);
+  return buf;
+}
+
+slicer::PreparedMesh load_part(const SliceSettings& s, double& scale) {
+  if (s.up != "z" && s.up != "y") throw InputError("slice.up = " + s.up + ": must be z or y");
+  const std::string ext = std::filesystem::path(s.part).extension().string();
+  if (s.up == "y" && (ext == ".gltf" || ext == ".glb" || ext == ".GLTF" || ext == ".GLB")) {
+    throw InputError("slice.up = y: glTF is +Y up by definition and is turned to +Z already");
+  }
+  check_scale(s.scale);
+  if (!s.scale_to_fit.empty() && s.scale != 1.0) {
+    throw InputError("slice.scale-to-fit = " + s.scale_to_fit +
+                     ": give --scale or --scale-to-fit, not both");
+  }
   const slicer::MeshPlacement placement = placement_of(s);
-  const slicer::Mesh raw = slicer::place_mesh(slicer::read_mesh_file(s.part), placement);
-  slicer::PreparedMesh part = slicer::prepare_mesh(raw, s.repair, "mesh = " + s.part);
+  slicer::Mesh file = slicer::read_mesh_file(s.part);
+  if (s.up == "y") {
+    for (slicer::Vec3& v : file.vertices_mm) v = slicer::Vec3(v.x(), -v.z(), v.y());
+  }
+  slicer::Mesh raw = slicer::place_mesh(std::move(file), placement);
+  scale = s.scale;
+  if (!s.scale_to_fit.empty()) scale = scale_to_fit(slicer::bounds(raw).size_mm(), s.scale_to_fit);
+  if (scale != 1.0)
+    raw = slicer::place_mesh(std::move(raw), {scale, slicer::Vec3::Zero(), placement.place});
+  slicer::PreparedMesh part = slicer::prepare_mesh(raw, {s.repair, s.strict}, "mesh = " + s.part);
   // Repairs may add triangles at the extremes: rest the part on the bed again.
   part.mesh = slicer::place_mesh(part.mesh, {1.0, slicer::Vec3::Zero(), placement.place});
   return part;
@@ -56,8 +96,7 @@ slicer::PreparedMesh load_part(const SliceSettings& s) {
 // checks every move again at the end).
 void check_part_fits(const slicer::Mesh& mesh, const machines::MachineProfile& m) {
   const slicer::Vec3 size = slicer::bounds(mesh).size_mm();
-  const std::string part = slicer::short_number(size.x()) + " x " + slicer::short_number(size.y()) +
-                           " x " + slicer::short_number(size.z()) + " mm";
+  const std::string part = size_text(size);
   const auto& v = m.volume;
   if (v.kind == machines::KinematicsKind::Delta) {
     double r = 0.0;  // the part frame's origin sits on the build plate's centre
@@ -89,6 +128,10 @@ nlohmann::json slice_parameters(const SliceSettings& s, const patterns::RegionPa
   j["place"] = s.place;
   j["rotate"] = s.rotate;
   j["repair"] = s.repair;
+  if (s.strict) j["strict"] = true;
+  if (s.scale != 1.0) j["scale"] = s.scale;
+  if (!s.scale_to_fit.empty()) j["scale-to-fit"] = s.scale_to_fit;
+  if (s.up != "z") j["up"] = s.up;
   return j;
 }
 
@@ -118,28 +161,126 @@ int layer_count(const patterns::RegionPattern& pattern, double height_mm,
   return layers;
 }
 
+// A part no layer can hold, or no bead can fill anywhere, is refused (no empty file).
+void check_printable(const std::vector<slicer::Region>& layers, const slicer::Vec3& size,
+                     const patterns::RegionPattern& p) {
+  const double r = p.nozzle_mm / 2.0;
+  for (const slicer::Region& layer : layers) {
+    if (!slicer::offset_region(layer, -r).empty()) return;
+  }
+  throw InputError("slice.nozzle = " + slicer::short_number(p.nozzle_mm) + ": the part (" +
+                   size_text(size) + ") is narrower than one bead everywhere; scale it up " +
+                   "(--scale, --scale-to-fit) or use a finer nozzle");
+}
+
+// Strips of a layer no bead reaches (more than 4 nozzle^2, with the layers below and above
+// covering them too: a wall, not a curved part's rim) are taken out of the layer, and said.
+std::vector<std::string> skip_thin_walls(std::vector<slicer::Region>& layers,
+                                         const patterns::RegionPattern& p,
+                                         nlohmann::json& skipped) {
+  const double d = p.nozzle_mm, r = d / 2.0, h = p.layer_height_mm;
+  std::vector<slicer::Region> lost(layers.size());
+  for (std::size_t k = 0; k < layers.size(); ++k) {
+    const slicer::Region reached = slicer::offset_region(slicer::offset_region(layers[k], -r), r);
+    for (const auto& piece : slicer::region_difference(layers[k], reached)) {
+      const double area = slicer::area_mm2(piece);
+      if (area <= 4.0 * d * d) continue;
+      bool wall = true;
+      for (const std::size_t j : {k - 1, k + 1}) {  // k - 1 wraps for k = 0: not a layer
+        wall = wall && j < layers.size() &&
+               slicer::area_mm2(slicer::region_intersection({piece}, layers[j])) > area / 2;
+      }
+      if (wall) lost[k].push_back(piece);
+    }
+  }
+  std::vector<std::string> notes;
+  for (std::size_t k = 0; k < layers.size();) {
+    if (lost[k].empty()) {
+      ++k;
+      continue;
+    }
+    std::size_t end = k;
+    double area = 0.0;
+    slicer::Region first = lost[k];
+    for (; end < layers.size() && !lost[end].empty(); ++end) {
+      area += slicer::area_mm2(lost[end]);
+      layers[end] = slicer::region_difference(layers[end], lost[end]);
+    }
+    const auto [lo, hi] = slicer::region_bounds(first);
+    const slicer::Vec2 c = (lo + hi) / 2.0;
+    const double z0 = static_cast<double>(k) * h, z1 = static_cast<double>(end) * h;
+    notes.push_back("skipped " + mm_text(area) + " mm2 too thin for the " +
+                    slicer::short_number(d) + " mm nozzle near (" + mm_text(c.x()) + ", " +
+                    mm_text(c.y()) + "), z " + mm_text(z0) + " to " + mm_text(z1) + " mm");
+    skipped.push_back(
+        {{"area_mm2", std::round(area * 1000.0) / 1000.0},
+         {"near_mm", {std::round(c.x() * 1000.0) / 1000.0, std::round(c.y() * 1000.0) / 1000.0}},
+         {"z_mm", {std::round(z0 * 1000.0) / 1000.0, std::round(z1 * 1000.0) / 1000.0}}});
+    k = end;
+  }
+  return notes;
+}
+
+std::vector<std::string> contour_notes(const slicer::ContourStats& c) {
+  std::vector<std::string> out;
+  if (c.gaps_closed > 0) {
+    out.push_back("mesh: " + std::to_string(c.gaps_closed) +
+                  " gap(s) closed in the contours (widest " + mm_text(c.widest_gap_mm) + " mm)");
+  }
+  if (c.wide_gaps_closed > 0) {
+    out.push_back("mesh: " + std::to_string(c.wide_gaps_closed) +
+                  " open contour(s) closed across a gap wider than " +
+                  slicer::short_number(slicer::kMaxContourGapMm) + " mm");
+  }
+  if (c.reversed_segments > 0) {
+    out.push_back("mesh: " + std::to_string(c.reversed_segments) +
+                  " contour segment(s) of flipped triangles followed backwards");
+  }
+  if (c.dropped_pieces > 0) {
+    out.push_back("mesh: " + std::to_string(c.dropped_pieces) +
+                  " open contour piece(s) of fewer than 3 points left out");
+  }
+  return out;
+}
+
 // The part filled layer by layer.
 SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
                        const machines::MachineProfile& machine) {
   SliceResult r;
-  r.part = load_part(s);
+  r.part = load_part(s, r.scale);
   const slicer::Box3 box = slicer::bounds(r.part.mesh);
   const slicer::Vec3 size = box.size_mm();
+  if (s.on_part_size) s.on_part_size(size);
   check_part_fits(r.part.mesh, machine);
   const slicer::Vec2 half(std::max(std::abs(box.min_mm.x()), std::abs(box.max_mm.x())),
                           std::max(std::abs(box.min_mm.y()), std::abs(box.max_mm.y())));
   const patterns::RegionPattern pattern = patterns::region_pattern(g, s.pattern_values, half);
+  if (size.z() < pattern.layer_height_mm) {
+    throw InputError("slice.layer-height = " + slicer::short_number(pattern.layer_height_mm) +
+                     ": the part (" + size_text(size) + ") is thinner than one layer (nozzle " +
+                     slicer::short_number(pattern.nozzle_mm) + " mm); scale it up (--scale, " +
+                     "--scale-to-fit) or use a finer nozzle and layer");
+  }
   const int layers = layer_count(pattern, size.z(), half);
   patterns::PartFill fill;
-  fill.layers = slicer::slice_layers(r.part.mesh, pattern.layer_height_mm, layers);
+  slicer::ContourStats contours;
+  fill.layers = slicer::slice_layers(r.part.mesh, pattern.layer_height_mm, layers, &contours);
+  check_printable(fill.layers, size, pattern);
+  r.notes = r.part.defects;
+  for (const auto& n : contour_notes(contours)) r.notes.push_back(n);
+  nlohmann::json skipped = nlohmann::json::array();
+  for (const auto& n : skip_thin_walls(fill.layers, pattern, skipped)) r.notes.push_back(n);
   fill.half_extent_mm = half;
   fill.volume_mm3 = slicer::signed_volume_mm3(r.part.mesh);
   fill.perimeters = s.perimeters;
   r.toolpath = patterns::fill_part(fill, pattern);
   r.toolpath.parameters = slice_parameters(s, pattern);
   r.toolpath.derived["size_mm"] = {size.x(), size.y(), size.z()};
+  if (r.scale != 1.0) r.toolpath.derived["scale"] = r.scale;
   r.toolpath.derived["mesh_triangles"] = r.part.mesh.triangles.size();
   r.toolpath.derived["mesh_repairs"] = r.part.changes;
+  r.toolpath.derived["mesh_notes"] = r.notes;
+  r.toolpath.derived["skipped_regions"] = skipped;
   r.produced = post::produce(r.toolpath, machine,
                              post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output);
   return r;
@@ -165,6 +306,34 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
 }
 
 }  // namespace
+
+double scale_to_fit(const slicer::Vec3& size_mm, const std::string& box) {
+  std::vector<double> v;
+  std::size_t at = 0;
+  bool ok = true;
+  while (ok && at <= box.size()) {
+    const std::size_t x = std::min(box.find('x', at), box.size());
+    const std::string part = box.substr(at, x - at);
+    try {
+      std::size_t used = 0;
+      v.push_back(std::stod(part, &used));
+      ok = used == part.size() && v.back() > 0.0 && v.back() <= 100000.0;
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    at = x + 1;
+  }
+  if (!ok || v.size() != 3) {
+    throw InputError("slice.scale-to-fit = " + box +
+                     ": must be WxDxH in mm, each in (0, 100000], e.g. 30x30x30");
+  }
+  double f = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    if (size_mm[k] > 0.0) f = std::min(f, v[static_cast<std::size_t>(k)] / size_mm[k]);
+  }
+  if (!std::isfinite(f)) throw InputError("slice.scale-to-fit = " + box + ": the part has no size");
+  return f;
+}
 
 slicer::Vec3 rotation_from_text(const std::string& text) {
   std::vector<double> v;

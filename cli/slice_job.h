@@ -2,6 +2,7 @@
 // sliced and filled with the pattern; planned and emitted through post::produce.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -27,6 +28,12 @@ struct SliceSettings {
   std::string place = "center";
   std::string rotate = "0,0,0";  // X,Y,Z degrees
   bool repair = false;
+  bool strict = false;       // refuse any mesh defect instead of slicing the soup
+  double scale = 1.0;        // uniform scale after the units (--scale)
+  std::string scale_to_fit;  // "WxDxH" mm: the largest uniform scale that fits (or empty)
+  std::string up = "z";      // the file's up axis: z, or y (turned to +z)
+  // Called with the placed part's size before any slicing work (the CLI prints it).
+  std::function<void(const slicer::Vec3& size_mm)> on_part_size;
   std::string machine = "deltawasp-2040-clay";
   std::string output = "slice.gcode";  // recorded in the report
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
@@ -35,9 +42,15 @@ struct SliceSettings {
 struct SliceResult {
   post::Produced produced;
   slicer::Toolpath toolpath;
-  slicer::PreparedMesh part;  // the mesh as sliced (placed), with its repairs; with `onto`,
-                              // the placed substrate
+  slicer::PreparedMesh part;       // the mesh as sliced (placed), with its repairs; with `onto`,
+                                   // the placed substrate
+  double scale = 1.0;              // the uniform scale applied (after units)
+  std::vector<std::string> notes;  // defects handled and regions skipped, for the summary
 };
+
+// Largest scale at which `size_mm` fits in the box "WxDxH" (mm); throws InputError naming
+// slice.scale-to-fit for a malformed box.
+double scale_to_fit(const slicer::Vec3& size_mm, const std::string& box);
 
 // Throws InputError for any bad setting, file or mesh, and when the part does not fit.
 // With `onto`, the pattern is the generator's own specimen (its extent flags apply) draped

@@ -48,7 +48,7 @@ for plot in plot-lettering plot-photo; do
   for ext in png html; do "$strand" preview "$plot.gcode" -o "$plot-preview.$ext"; done
 done
 # Meshes (samples/meshes/): a bone plug filled with the scaffold and with the tetrachiral
-# lattice, a torus with the scaffold, and a scaffold specimen laid on a curved plate
+# lattice, a torus and Keenan Crane's spot with the scaffold, and a scaffold specimen laid on a curved plate
 # (3-axis, nozzle vertical); every file checked against its machine and drawn with its mesh
 # under it (PNG, and HTML with a 3D orbit view).
 slice() {  # name machine strand-slice-arguments...
@@ -63,6 +63,9 @@ slice bone-plug-scaffold deltawasp-2040-clay "$samples/meshes/bone-plug.stl" --p
 slice bone-plug-tetrachiral deltawasp-2040-clay "$samples/meshes/bone-plug.stl" --pattern tetrachiral \
   --nozzle 0.4 --cell 5 --node-core 1
 slice torus-scaffold deltawasp-2040-clay "$samples/meshes/torus.stl" --pattern scaffold --nozzle 0.84 --gap 1.6
+# A real public mesh: Keenan Crane's spot (CC0), +Y up and 1.5 units long, scaled to 30 mm.
+slice spot-scaffold deltawasp-2040-clay "$samples/meshes/spot.obj" --up y --scale-to-fit 30x30x30 \
+  --pattern scaffold --nozzle 0.6 --gap 1 --perimeters 1
 slice curved-plate-scaffold marlin-xyz-200 --onto "$samples/meshes/curved-plate.obj" --pattern scaffold \
   --nozzle 0.6 --gap 1 --size 40x24 --layers 2
 for sweep in "$samples"/sweeps/*.json; do

@@ -14,6 +14,7 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -121,6 +122,7 @@ void check_geometry(const Mesh& m, MeshCheck& c) {
   Soup polygons;
   to_soup(m, points, polygons);
   if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
+    c.touching_vertex = true;
     c.problem = "non-manifold: surfaces touch at a single vertex";
     return;
   }
@@ -191,7 +193,179 @@ MeshCheck check_mesh(const Mesh& input) {
   return c;
 }
 
+MeshCheck check_edges_as_indexed(const Mesh& m) {
+  MeshCheck c;
+  check_edges(m, c);
+  return c;
+}
+
+namespace {
+
+// Triangles on the same three vertices: copies run the same way are one triangle, a pair run
+// opposite ways is a sheet of no volume (or two shells glued face to face) and goes.
+std::size_t drop_doubled_triangles(Mesh& m) {
+  std::map<std::array<int, 3>, std::vector<std::size_t>> by_corners;
+  for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+    std::array<int, 3> k = m.triangles[i];
+    std::sort(k.begin(), k.end());
+    by_corners[k].push_back(i);
+  }
+  std::vector<char> keep(m.triangles.size(), 1);
+  std::size_t dropped = 0;
+  for (const auto& [corners, ids] : by_corners) {
+    if (ids.size() < 2) continue;
+    // +1 for each copy that is an even permutation of the sorted corners, -1 otherwise.
+    int net = 0;
+    for (const std::size_t i : ids) {
+      const auto& t = m.triangles[i];
+      const bool even = (t[0] == corners[0] && t[1] == corners[1]) ||
+                        (t[1] == corners[0] && t[2] == corners[1]) ||
+                        (t[2] == corners[0] && t[0] == corners[1]);
+      net += even ? 1 : -1;
+    }
+    bool kept = false;
+    for (const std::size_t i : ids) {
+      const auto& t = m.triangles[i];
+      const bool even = (t[0] == corners[0] && t[1] == corners[1]) ||
+                        (t[1] == corners[0] && t[2] == corners[1]) ||
+                        (t[2] == corners[0] && t[0] == corners[1]);
+      if (!kept && net != 0 && even == (net > 0)) {
+        kept = true;
+        continue;
+      }
+      keep[i] = 0;
+      ++dropped;
+    }
+  }
+  if (dropped > 0) {
+    std::vector<std::array<int, 3>> kept_triangles;
+    for (std::size_t i = 0; i < m.triangles.size(); ++i) {
+      if (keep[i]) kept_triangles.push_back(m.triangles[i]);
+    }
+    m.triangles = std::move(kept_triangles);
+  }
+  return dropped;
+}
+
+std::string count_text(std::size_t n, const std::string& one, const std::string& many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// What the soup slicer does with each defect, for the summary and the report.
+std::vector<std::string> defect_notes(const MeshCheck& c) {
+  std::vector<std::string> out;
+  if (c.self_intersections > 0) {
+    out.push_back(
+        "mesh: " +
+        count_text(c.self_intersections, "self-intersecting pair", "self-intersecting pairs") +
+        " of triangles resolved by contour union");
+  }
+  if (c.non_manifold_edges > 0) {
+    out.push_back("mesh: " + count_text(c.non_manifold_edges, "edge", "edges") +
+                  " shared by 3 or more triangles (non-manifold) sliced as a triangle soup");
+  }
+  if (c.touching_vertex) {
+    out.push_back(
+        "mesh: surfaces touching at a single vertex (non-manifold) sliced as a triangle soup");
+  }
+  if (c.border_edges > 0) {
+    out.push_back("mesh: open surface (" +
+                  count_text(c.border_edges, "border edge", "border edges") +
+                  "); contours closed across the gaps");
+  }
+  if (c.misoriented_edges > 0) {
+    out.push_back("mesh: " + count_text(c.misoriented_edges, "edge", "edges") +
+                  " between triangles facing opposite ways; contours follow them either way");
+  }
+  return out;
+}
+
+}  // namespace
+
+namespace {
+
+struct UnionFind {
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n) : parent(n) {
+    for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  }
+  std::size_t find(std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  }
+  void join(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
+};
+
+}  // namespace
+
+MeshInfo mesh_info(const Mesh& input) {
+  MeshInfo info;
+  info.triangles = input.triangles.size();
+  info.vertices = input.vertices_mm.size();
+  info.size = bounds(input).size_mm();
+  const Mesh m = weld_mesh(input);
+  info.volume = signed_volume_mm3(m);
+  info.check = check_mesh(m);
+  info.crossings_searched = info.check.border_edges == 0 && info.check.non_manifold_edges == 0 &&
+                            info.check.misoriented_edges == 0 && !info.check.touching_vertex;
+  const std::size_t nv = m.vertices_mm.size(), nt = m.triangles.size();
+  UnionFind shells(nv), borders(nv), corners(3 * nt);
+  std::map<std::pair<int, int>, std::vector<std::size_t>> edge_triangles;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const auto& tri = m.triangles[t];
+    for (int k = 0; k < 3; ++k) {
+      const int a = tri[static_cast<std::size_t>(k)],
+                b = tri[static_cast<std::size_t>((k + 1) % 3)];
+      shells.join(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
+      edge_triangles[{std::min(a, b), std::max(a, b)}].push_back(t);
+    }
+  }
+  auto corner = [&](std::size_t t, int v) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (m.triangles[t][k] == v) return 3 * t + k;
+    }
+    return 3 * t;
+  };
+  std::vector<char> on_border(nv, 0);
+  for (const auto& [e, ts] : edge_triangles) {
+    if (ts.size() == 1) {
+      borders.join(static_cast<std::size_t>(e.first), static_cast<std::size_t>(e.second));
+      on_border[static_cast<std::size_t>(e.first)] = on_border[static_cast<std::size_t>(e.second)] =
+          1;
+    }
+    if (ts.size() != 2) continue;  // fans join through manifold edges only
+    for (const int v : {e.first, e.second}) corners.join(corner(ts[0], v), corner(ts[1], v));
+  }
+  std::vector<char> used(nv, 0);
+  for (const auto& t : m.triangles) {
+    for (const int v : t) used[static_cast<std::size_t>(v)] = 1;
+  }
+  std::map<std::size_t, char> shell_roots, border_roots;
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (used[v]) shell_roots[shells.find(v)] = 1;
+    if (on_border[v]) border_roots[borders.find(v)] = 1;
+  }
+  info.shells = shell_roots.size();
+  info.holes = border_roots.size();
+  std::vector<std::vector<std::size_t>> fans(nv);
+  for (std::size_t t = 0; t < nt; ++t) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      fans[static_cast<std::size_t>(m.triangles[t][k])].push_back(corners.find(3 * t + k));
+    }
+  }
+  for (auto& f : fans) {
+    std::sort(f.begin(), f.end());
+    if (std::unique(f.begin(), f.end()) - f.begin() > 1) ++info.non_manifold_vertices;
+  }
+  return info;
+}
+
 PreparedMesh prepare_mesh(const Mesh& input, bool repair, const std::string& what) {
+  return prepare_mesh(input, PrepareOptions{repair, true}, what);
+}
+
+PreparedMesh prepare_mesh(const Mesh& input, const PrepareOptions& options,
+                          const std::string& what) {
   PreparedMesh out;
   out.mesh = weld_mesh(input);
   const Vec3 size = bounds(out.mesh).size_mm();
@@ -200,27 +374,52 @@ PreparedMesh prepare_mesh(const Mesh& input, bool repair, const std::string& wha
   }
   const std::size_t merged = input.vertices_mm.size() - out.mesh.vertices_mm.size();
   out.before = check_mesh(out.mesh);
+  MeshCheck sliced = out.before;
   if (!out.before.ok()) {
-    if (!repair)
+    if (options.strict && !options.repair)
       throw InputError(what + ": " + out.before.problem + " (run with --repair to fix it)");
-    if (merged > 0) out.changes.push_back("merged coincident vertices: " + std::to_string(merged));
-    out.mesh = weld_mesh(repaired(out.mesh, out.changes));
-    const MeshCheck after = check_mesh(out.mesh);
-    if (!after.ok()) {
-      const bool cut = after.self_intersections > 0;
-      throw InputError(what + ": " + after.problem +
-                       (cut ? " (--repair does not cut self-intersections: export the part as one "
-                              "closed surface)"
-                            : " (still after --repair)"));
+    if (options.repair) {
+      std::vector<std::string> changes;
+      if (merged > 0) changes.push_back("merged coincident vertices: " + std::to_string(merged));
+      Mesh fixed = repaired(out.mesh, changes);
+      // Never worse than the file: the mesh as indexed there against the repaired one.
+      const MeshCheck was = check_edges_as_indexed(input), now = check_edges_as_indexed(fixed);
+      if (now.non_manifold_edges > was.non_manifold_edges || now.border_edges > was.border_edges ||
+          now.misoriented_edges > was.misoriented_edges) {
+        out.changes.push_back(
+            "repair left out: it would add border, non-manifold or misoriented edges");
+      } else {
+        out.changes.insert(out.changes.end(), changes.begin(), changes.end());
+        out.mesh = std::move(fixed);
+      }
+      sliced = check_mesh(out.mesh);
+      if (options.strict && !sliced.ok()) {
+        const bool cut = sliced.self_intersections > 0;
+        throw InputError(what + ": " + sliced.problem +
+                         (cut ? " (--repair does not cut self-intersections: export the part as "
+                                "one closed surface)"
+                              : " (still after --repair)"));
+      }
+      if (sliced.ok()) out.before.inside_out = out.before.inside_out || sliced.inside_out;
     }
-    if (after.inside_out) out.before.inside_out = true;
+  }
+  if (!sliced.ok()) {
+    out.defects = defect_notes(sliced);
+    const std::size_t doubled = drop_doubled_triangles(out.mesh);
+    if (doubled > 0) {
+      out.defects.push_back(
+          "mesh: " + count_text(doubled, "doubled triangle", "doubled triangles") +
+          " left out (copies, or pairs facing opposite ways)");
+    }
+    if (signed_volume_mm3(out.mesh) < 0.0) out.before.inside_out = true;
   }
   if (out.before.inside_out) {
     for (auto& t : out.mesh.triangles) std::swap(t[1], t[2]);
     out.changes.push_back("reversed inward-facing triangles");
   }
   if (!(std::abs(signed_volume_mm3(out.mesh)) > 1e-9 * size.prod())) {
-    throw InputError(what + ": zero volume (degenerate triangles only)");
+    throw InputError(what +
+                     ": no volume (every triangle degenerate, or every shell open and flat)");
   }
   return out;
 }

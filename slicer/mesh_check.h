@@ -22,6 +22,7 @@ struct MeshCheck {
   std::size_t misoriented_edges = 0;   // two triangles run the edge the same way
   std::size_t self_intersections = 0;  // pairs of triangles that cut each other
   bool inside_out = false;             // closed and consistent, but normals point inward
+  bool touching_vertex = false;        // surfaces meet at a single vertex (non-manifold)
   std::string problem;                 // first blocking problem with where, empty = none
   bool ok() const { return problem.empty(); }
 };
@@ -34,15 +35,42 @@ Mesh weld_mesh(const Mesh& m);
 // when the topology is sound.
 MeshCheck check_mesh(const Mesh& m);
 
+// Border, non-manifold and misoriented edges of the mesh as indexed (no welding): what
+// `--repair` must never increase.
+MeshCheck check_edges_as_indexed(const Mesh& m);
+
+// What `strand mesh` prints: a mesh's measures and defects (edges and vertices after exact
+// welding).
+struct MeshInfo {
+  Vec3 size = Vec3::Zero();                 // bounding box, file units
+  std::size_t triangles = 0, vertices = 0;  // as read
+  std::size_t shells = 0;                   // connected pieces (through shared vertices)
+  std::size_t holes = 0;                    // loops of border edges
+  std::size_t non_manifold_vertices = 0;    // where surfaces touch at one vertex
+  MeshCheck check;                          // border, non-manifold, misoriented edges; crossings
+  bool crossings_searched = false;          // self-intersections are searched when edges are sound
+  double volume = 0.0;                      // signed, file units^3
+};
+MeshInfo mesh_info(const Mesh& m);
+
 struct PreparedMesh {
   Mesh mesh;                         // welded, outward oriented, repaired if asked
   std::vector<std::string> changes;  // what was changed, for the report ("stitched 12 ...")
+  std::vector<std::string> defects;  // what was found and how slicing handles it ("mesh: ...")
   MeshCheck before;                  // the check of the mesh as read
 };
 
-// Welds, checks, repairs when `repair`, orients outward. Throws InputError
-// "`what` = path: <problem> at (x, y, z)[; run with --repair]" when the mesh cannot be
-// sliced, and for flat or zero-volume meshes.
+struct PrepareOptions {
+  bool repair = false;  // CGAL soup repair, stitching and hole filling, kept only if no worse
+  bool strict = false;  // refuse any defect, as a closed-surface slicer would
+};
+
+// Welds, checks, repairs when asked, orients outward. Defects are listed in `defects` (the
+// soup slicer of mesh_slicer.h copes with them); with `strict` they throw InputError
+// "`what`: <problem> at (x, y, z) (run with --repair to fix it)". Flat meshes and meshes with
+// no volume throw in either mode.
+PreparedMesh prepare_mesh(const Mesh& m, const PrepareOptions& options, const std::string& what);
+// The strict form: prepare_mesh(m, {repair, true}, what).
 PreparedMesh prepare_mesh(const Mesh& m, bool repair, const std::string& what);
 
 }  // namespace strand::slicer

@@ -2,10 +2,10 @@
 #include "slicer/mesh_header.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <set>
-#include <cmath>
 #include <sstream>
 #include <vector>
 
@@ -15,10 +15,9 @@ namespace strand::slicer {
 
 namespace {
 
-const std::set<std::string> kPlyTypes = {"char",   "uchar",  "short",  "ushort",  "int",
-                                         "uint",   "float",  "double", "int8",    "uint8",
-                                         "int16",  "uint16", "int32",  "uint32",  "float32",
-                                         "float64"};
+const std::set<std::string> kPlyTypes = {"char",  "uchar",  "short",   "ushort", "int",   "uint",
+                                         "float", "double", "int8",    "uint8",  "int16", "uint16",
+                                         "int32", "uint32", "float32", "float64"};
 
 struct PlyHeaderReader {
   std::string path;
@@ -29,7 +28,8 @@ struct PlyHeaderReader {
   std::set<std::string> names;
 
   [[noreturn]] void fail(const std::string& why) const {
-    throw InputError("mesh = " + path + ": PLY header line " + std::to_string(line_no) + ": " + why);
+    throw InputError("mesh = " + path + ": PLY header line " + std::to_string(line_no) + ": " +
+                     why);
   }
 
   void type(std::istringstream& w) const {
@@ -89,7 +89,8 @@ struct PlyHeaderReader {
 
 void vet_ply_header(const std::string& path, std::uintmax_t size_bytes) {
   std::ifstream in(path, std::ios::binary);
-  std::string head(static_cast<std::size_t>(std::min<std::uintmax_t>(size_bytes, kMaxPlyHeaderBytes)), '\0');
+  std::string head(
+      static_cast<std::size_t>(std::min<std::uintmax_t>(size_bytes, kMaxPlyHeaderBytes)), '\0');
   in.read(head.data(), static_cast<std::streamsize>(head.size()));
   head.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
   PlyHeaderReader r{path, size_bytes};
@@ -149,6 +150,98 @@ void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
         counts[k] > static_cast<double>(size_bytes)) {
       fail(std::string(k == 0 ? "vertex" : "face") + " count must be a whole number 0 .. " +
            std::to_string(size_bytes) + " (the file's bytes)");
+    }
+  }
+}
+
+namespace {
+
+bool non_finite_token(const std::string& t) {
+  if (t.empty()) return false;
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  return end == t.c_str() + t.size() && !std::isfinite(v);
+}
+
+[[noreturn]] void non_finite(const std::string& path, const std::string& where,
+                             const std::string& token) {
+  throw InputError("mesh = " + path + ": " + where + " has a non-finite coordinate ('" +
+                   token.substr(0, 20) + "': NaN or infinity)");
+}
+
+}  // namespace
+
+void vet_finite_vertices(const std::string& path, const std::string& ext,
+                         std::uintmax_t size_bytes) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(80, '\0');
+  in.read(head.data(), 80);
+  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  if (ext == ".stl" && size_bytes >= 84) {
+    std::uint32_t n = 0;
+    in.read(reinterpret_cast<char*>(&n), 4);
+    if (in && 84 + 50 * static_cast<std::uintmax_t>(n) == size_bytes) {  // binary STL
+      for (std::uint32_t t = 0; t < n; ++t) {
+        float f[12];
+        std::uint16_t attr = 0;
+        in.read(reinterpret_cast<char*>(f), sizeof f);
+        in.read(reinterpret_cast<char*>(&attr), 2);
+        if (!in) return;
+        for (int k = 3; k < 12; ++k) {  // the normal (k < 3) is not used
+          if (!std::isfinite(f[k])) {
+            non_finite(path, "triangle " + std::to_string(t) + ", corner " + std::to_string(k / 3),
+                       std::isnan(f[k]) ? "nan" : "inf");
+          }
+        }
+      }
+      return;
+    }
+  }
+  in.clear();
+  in.seekg(0);
+  std::string line;
+  int line_no = 0;
+  bool body = ext != ".ply";  // PLY: only the lines after end_header
+  bool ply_ascii = false;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream w(line);
+    std::string first;
+    if (!(w >> first)) continue;
+    if (!body) {
+      if (first == "format") {
+        std::string kind;
+        w >> kind;
+        ply_ascii = kind == "ascii";
+      }
+      if (first == "end_header") {
+        if (!ply_ascii) return;  // binary bodies are checked after reading
+        body = true;
+      }
+      continue;
+    }
+    std::vector<std::string> tokens;
+    if (ext == ".stl") {
+      if (first != "vertex") continue;
+    } else if (ext == ".obj") {
+      if (first != "v") continue;
+    } else if (first[0] == '#') {
+      continue;
+    } else {
+      tokens.push_back(first);
+    }
+    for (std::string t; w >> t;) tokens.push_back(t);
+    for (const std::string& t : tokens) {
+      if (non_finite_token(t)) non_finite(path, "line " + std::to_string(line_no), t);
+      if (ext == ".ply") {  // OpenMesh spun for two minutes on a word in an ASCII PLY body
+        char* end = nullptr;
+        std::strtod(t.c_str(), &end);
+        if (end != t.c_str() + t.size()) {
+          throw InputError("mesh = " + path + ": PLY line " + std::to_string(line_no) + ": '" +
+                           t.substr(0, 20) + "' is not a number");
+        }
+      }
     }
   }
 }

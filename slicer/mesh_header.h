@@ -24,4 +24,13 @@ void vet_ply_header(const std::string& path, std::uintmax_t size_bytes);
 // face counts the file's `size_bytes` can hold.
 void vet_off_file(const std::string& path, std::uintmax_t size_bytes);
 
+// Readers drop or merge vertices with NaN or infinite coordinates and then report "no
+// triangles" or "open mesh". Throws InputError "mesh = PATH: ... not finite (NaN or
+// infinity)" naming the vertex (binary STL) or the line (STL, OBJ, OFF and ASCII PLY text)
+// where a vertex coordinate is not a finite number, and "PLY line N: 'x' is not a number" for
+// a word in an ASCII PLY body (OpenMesh spun for minutes on one). `ext` is ".stl", ".obj",
+// ".off" or ".ply".
+void vet_finite_vertices(const std::string& path, const std::string& ext,
+                         std::uintmax_t size_bytes);
+
 }  // namespace strand::slicer

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 
 #include "slicer/file_io.h"
@@ -109,6 +110,7 @@ Mesh read_mesh_file(const std::string& path) {
     m = read_gltf(path);
   } else if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".off") {
     if (ext == ".ply") vet_ply_header(path, size);
+    vet_finite_vertices(path, ext, size);  // before the OFF check: NaN is named as such
     if (ext == ".off") vet_off_file(path, size);
     m = read_openmesh(path, ext);
   } else {
@@ -147,6 +149,31 @@ Mesh place_mesh(Mesh m, const MeshPlacement& p) {
   }
   for (Vec3& v : m.vertices_mm) v += shift;
   return m;
+}
+
+std::string binary_stl_bytes(const Mesh& m) {
+  std::string out(80, '\0');
+  const std::string head = "binary STL written by strand";
+  out.replace(0, head.size(), head);
+  const auto n = static_cast<std::uint32_t>(m.triangles.size());
+  out.append(reinterpret_cast<const char*>(&n), 4);
+  for (const auto& t : m.triangles) {
+    const Vec3& a = m.vertices_mm[static_cast<std::size_t>(t[0])];
+    const Vec3& b = m.vertices_mm[static_cast<std::size_t>(t[1])];
+    const Vec3& c = m.vertices_mm[static_cast<std::size_t>(t[2])];
+    Vec3 normal = (b - a).cross(c - a);
+    if (normal.norm() > 0.0) normal.normalize();
+    float f[12];
+    for (int k = 0; k < 3; ++k) {
+      f[k] = static_cast<float>(normal[k]);
+      f[3 + k] = static_cast<float>(a[k]);
+      f[6 + k] = static_cast<float>(b[k]);
+      f[9 + k] = static_cast<float>(c[k]);
+    }
+    out.append(reinterpret_cast<const char*>(f), sizeof f);
+    out.append(2, '\0');
+  }
+  return out;
 }
 
 }  // namespace strand::slicer

@@ -34,4 +34,7 @@ Placement placement_from(const std::string& key, const std::string& name);
 // Scales, rotates and places the mesh as the part frame expects (bottom at z = 0).
 Mesh place_mesh(Mesh m, const MeshPlacement& placement);
 
+// The mesh as a binary STL file's bytes (float coordinates, facet normals from the corners).
+std::string binary_stl_bytes(const Mesh& m);
+
 }  // namespace strand::slicer

@@ -1,8 +1,11 @@
-// Planar slices of a closed mesh with CGAL's Polygon_mesh_slicer over an AABB tree of the
-// mesh's edges: built once, then asked for the contours at any height.
+// Planar slices of a triangle soup: every triangle cut by the plane gives one oriented
+// segment; segments chain into loops through their shared end points (gaps up to
+// kMaxContourGapMm closed), and the loops' nonzero union is the layer's region. Overlapping
+// shells, self-intersections, non-manifold edges and vertices, inside-out shells and small
+// holes then still give the solid's section.
 #pragma once
 
-#include <memory>
+#include <cstddef>
 #include <vector>
 
 #include "slicer/mesh.h"
@@ -10,27 +13,38 @@
 
 namespace strand::slicer {
 
+// Loose contour ends this close are joined (a crack or a small hole in the surface).
+inline constexpr double kMaxContourGapMm = 2.0;
+
+// What the chaining had to mend, summed over the slices it made.
+struct ContourStats {
+  std::size_t gaps_closed = 0;        // ends joined across a gap (0 < gap <= kMaxContourGapMm)
+  double widest_gap_mm = 0.0;         // the widest of those
+  std::size_t wide_gaps_closed = 0;   // open loops closed across more than kMaxContourGapMm
+  std::size_t reversed_segments = 0;  // segments of flipped triangles followed backwards
+  std::size_t dropped_pieces = 0;     // open pieces of fewer than 3 points, left out
+  ContourStats& operator+=(const ContourStats& o);
+};
+
 class MeshSlicer {
  public:
   explicit MeshSlicer(const Mesh& m);
-  ~MeshSlicer();
-  MeshSlicer(const MeshSlicer&) = delete;
-  MeshSlicer& operator=(const MeshSlicer&) = delete;
-
-  struct Impl;
-  const Impl& impl() const { return *impl_; }
+  const Mesh& mesh() const { return mesh_; }
+  const std::vector<double>& vertex_z() const { return vertex_z_; }
 
  private:
-  std::unique_ptr<Impl> impl_;
+  Mesh mesh_;
+  std::vector<double> vertex_z_;  // sorted, to move planes off vertices
 };
 
-// Closed contours (first point not repeated at the end) where the plane z = z_mm cuts the
-// mesh, in no particular orientation; open pieces (from an open mesh) are dropped. A plane
-// that meets a vertex exactly is moved up by kSliceNudgeMm so contours stay simple.
-std::vector<Ring> slice_at(const MeshSlicer& slicer, double z_mm);
+// Closed loops (first point not repeated at the end) where the plane z = z_mm cuts the mesh,
+// oriented with the solid on the left (counter-clockwise around an outward-facing shell's
+// section). A plane that meets a vertex exactly is moved up by kSliceNudgeMm.
+std::vector<Ring> slice_at(const MeshSlicer& slicer, double z_mm, ContourStats* stats = nullptr);
 
 // The regions of `layers` layers of height `layer_height_mm` over a part resting on z = 0:
-// layer k is the slice at mid-layer, z = (k + 0.5) * layer height.
-std::vector<Region> slice_layers(const Mesh& m, double layer_height_mm, int layers);
+// layer k is the nonzero union of the loops at mid-layer, z = (k + 0.5) * layer height.
+std::vector<Region> slice_layers(const Mesh& m, double layer_height_mm, int layers,
+                                 ContourStats* stats = nullptr);
 
 }  // namespace strand::slicer

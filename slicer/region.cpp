@@ -91,6 +91,15 @@ Region region_from_contours(const std::vector<Ring>& contours) {
   return execute(c, ClipperLib::ctUnion, ClipperLib::pftEvenOdd);
 }
 
+Region region_from_oriented_loops(const std::vector<Ring>& loops) {
+  Paths paths;
+  for (const Ring& ring : loops) paths.push_back(to_path(ring));
+  ClipperLib::CleanPolygons(paths, 1.0);
+  ClipperLib::Clipper c;
+  c.AddPaths(paths, ClipperLib::ptSubject, true);
+  return execute(c, ClipperLib::ctUnion, ClipperLib::pftNonZero);
+}
+
 Region offset_region(const Region& r, double delta_mm) {
   ClipperLib::ClipperOffset o(2.0, kOffsetArcToleranceMm * kClipperUnitsPerMm);
   o.AddPaths(to_paths(r), ClipperLib::jtRound, ClipperLib::etClosedPolygon);

@@ -20,6 +20,10 @@ using Region = std::vector<RegionPart>;
 // The region enclosed by closed contours of any orientation (even-odd nesting: a contour
 // inside another is a hole, one inside a hole an island).
 Region region_from_contours(const std::vector<Ring>& contours);
+// The region where the winding number of oriented loops is not zero (Clipper's nonzero
+// union): overlapping loops merge, a loop run clockwise (an inside-out shell) still counts,
+// a clockwise loop inside a counter-clockwise one (a cavity) is a hole.
+Region region_from_oriented_loops(const std::vector<Ring>& loops);
 // Grown (delta > 0) or shrunk (delta < 0) by |delta_mm|, round joins; parts that vanish are
 // dropped, parts that pinch apart become separate parts.
 Region offset_region(const Region& r, double delta_mm);

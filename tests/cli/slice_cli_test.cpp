@@ -22,6 +22,24 @@ std::string plug_dir() {
   return dir;
 }
 
+// `b` moved by `offset` added to `a` as more triangles of one soup (no shared vertices).
+slicer::Mesh with(slicer::Mesh a, const slicer::Mesh& b, const slicer::Vec3& offset) {
+  const int base = static_cast<int>(a.vertices_mm.size());
+  for (const auto& v : b.vertices_mm) a.vertices_mm.push_back(v + offset);
+  for (const auto& t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return a;
+}
+
+// A Benchy-like part of overlapping shells: a hull box, a cabin box sunk into it and a
+// chimney cylinder through the cabin roof, each a closed surface, none cut by the others.
+slicer::Mesh boat_mesh() {
+  using slicer::Vec3;
+  slicer::Mesh m = box_mesh(Vec3(30, 14, 6));
+  m = with(m, box_mesh(Vec3(12, 10, 8)), Vec3(4, 2, 3));
+  m = with(m, tube_mesh(2.0, 0.0, 8.0, 48), Vec3(10, 7, 6));
+  return m;
+}
+
 struct PatternCase {
   const char* name;
   const char* flags;
@@ -95,8 +113,9 @@ TEST(SliceCli, PreviewDrawsThePlacedMeshUnderThePath) {
   EXPECT_NEAR(pos.minValues.at(0), 90.0, 0.05);
   EXPECT_NEAR(pos.maxValues.at(0), 110.0, 0.05);
   EXPECT_NE(slurp(dir + "/p.html").find("\"substrate\":{"), std::string::npos);
-  expect_input_error(run_strand("slice plug.stl --nozzle 0.6 --gap 1 -o q.gcode --preview q.bmp", dir),
-                     "slice.preview = q.bmp: extension must be");
+  expect_input_error(
+      run_strand("slice plug.stl --nozzle 0.6 --gap 1 -o q.gcode --preview q.bmp", dir),
+      "slice.preview = q.bmp: extension must be");
   EXPECT_FALSE(exists(dir + "/q.gcode"));
 }
 
@@ -105,7 +124,7 @@ TEST(SliceCli, RepairMakesAHoledMeshSlice) {
   slicer::Mesh m = tube_mesh(8.0, 0.0, 4.0, 48);
   m.triangles.pop_back();
   write_binary_stl(m, dir + "/holed.stl");
-  const auto bad = run_strand("slice holed.stl --nozzle 0.6 --gap 1 -o h.gcode", dir);
+  const auto bad = run_strand("slice holed.stl --nozzle 0.6 --gap 1 --strict -o h.gcode", dir);
   expect_input_error(bad, "open mesh");
   EXPECT_NE(bad.err.find("--repair"), std::string::npos);
   EXPECT_FALSE(exists(dir + "/h.gcode"));
@@ -153,6 +172,116 @@ TEST(SliceCli, OntoACurvedPlateFollowsItAndPassesCheck) {
   EXPECT_FALSE(exists(dir + "/q.gcode"));
 }
 
+TEST(SliceCli, OverlappingShellsSliceWithTheirDefectsSaid) {
+  const auto dir = fresh_dir("slice-boat");
+  write_binary_stl(boat_mesh(), dir + "/boat.stl");
+  const auto r = run_strand("slice boat.stl --nozzle 0.6 --gap 1 --perimeters 1" + kMachine +
+                                " -o b.gcode --report b.json",
+                            dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("part 30.000 x 14.000 x 14.000 mm\n", 0), 0u) << "size first: " << r.out;
+  EXPECT_NE(r.out.find("self-intersecting pairs of triangles resolved by contour union"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(run_strand("check b.gcode" + kMachine, dir).exit_code, 0);
+  const auto report = nlohmann::json::parse(slurp(dir + "/b.json"));
+  // The hull, cabin and chimney layers are one region each: the union, no holes where they
+  // overlap, so no more than 3 strands per layer.
+  for (const auto& n : report.at("derived").at("regions_per_layer")) EXPECT_EQ(n.get<int>(), 1);
+  for (const auto& n : report.at("derived").at("pattern_strands_per_layer"))
+    EXPECT_LE(n.get<int>(), 3);
+  EXPECT_EQ(report.at("totals").at("layers").get<std::size_t>(),
+            report.at("derived").at("layers").get<std::size_t>());
+}
+
+TEST(SliceCli, ScaleToFitTakesTheLargestUniformScale) {
+  const auto dir = fresh_dir("slice-fit");
+  write_binary_stl(box_mesh(slicer::Vec3(10, 20, 5)), dir + "/box.stl");
+  const auto r = run_strand(
+      "slice box.stl --nozzle 0.6 --gap 1 --scale-to-fit 30x30x30 -o b.gcode --report b.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("part 15.000 x 30.000 x 7.500 mm\n", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("  scale          1.5\n"), std::string::npos) << r.out;
+  const auto report = nlohmann::json::parse(slurp(dir + "/b.json"));
+  EXPECT_NEAR(report.at("derived").at("scale").get<double>(), 1.5, 1e-12);
+  EXPECT_EQ(report.at("parameters").at("scale-to-fit"), "30x30x30");
+  const auto y_up =
+      run_strand("slice box.stl --nozzle 0.6 --gap 1 --up y --scale 2 -o c.gcode", dir);
+  ASSERT_EQ(y_up.exit_code, 0) << y_up.err;
+  EXPECT_EQ(y_up.out.rfind("part 20.000 x 10.000 x 40.000 mm\n", 0), 0u) << "+Y up: " << y_up.out;
+}
+
+TEST(SliceCli, AThinFinOnAPartIsSkippedWithANote) {
+  const auto dir = fresh_dir("slice-fin");
+  // A 20 mm block with a 0.5 mm fin standing out of one side, overlapping it by 1 mm.
+  write_binary_stl(with(box_mesh(slicer::Vec3(20, 20, 5)), box_mesh(slicer::Vec3(10, 0.5, 5)),
+                        slicer::Vec3(19, 8, 0)),
+                   dir + "/finned.stl");
+  const auto r = run_strand(
+      "slice finned.stl --nozzle 0.84 --gap 1" + kMachine + " -o f.gcode --report f.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("  skipped        "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("mm2 too thin for the 0.84 mm nozzle near ("), std::string::npos) << r.out;
+  EXPECT_EQ(run_strand("check f.gcode" + kMachine, dir).exit_code, 0);
+  const auto report = nlohmann::json::parse(slurp(dir + "/f.json"));
+  const auto& skipped = report.at("derived").at("skipped_regions");
+  ASSERT_FALSE(skipped.empty());
+  double area = 0.0;
+  for (const auto& s : skipped) {
+    area += s.at("area_mm2").get<double>();
+    // The fin outside the block runs from x = 5.5 to 14.5, y = -2 to -1.5 (part centred).
+    EXPECT_NEAR(s.at("near_mm")[0].get<double>(), 10.0, 0.5);
+    EXPECT_NEAR(s.at("near_mm")[1].get<double>(), -1.75, 0.3);
+  }
+  EXPECT_GT(area, 3.0) << "the fin's 9 x 0.5 mm outside the block, in each skipped layer";
+}
+
+TEST(SliceCli, RealMeshSpotSlicesUpright) {
+  // Keenan Crane's spot (CC0; source in tests/data/README.md): +Y up, unit size.
+  const auto dir = fresh_dir("slice-spot");
+  const std::string spot = std::string(STRAND_SOURCE_DIR) + "/samples/meshes/spot.obj";
+  const auto r = run_strand(
+      "slice " + spot + " --up y --scale-to-fit 30x30x30 --nozzle 0.6 --gap 1 --perimeters 1" +
+          kMachine + " -o s.gcode --report s.json",
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(run_strand("check s.gcode" + kMachine, dir).exit_code, 0);
+  const auto report = nlohmann::json::parse(slurp(dir + "/s.json"));
+  const auto& size = report.at("derived").at("size_mm");
+  const double x = size[0].get<double>(), y = size[1].get<double>(), z = size[2].get<double>();
+  EXPECT_NEAR(std::max({x, y, z}), 30.0, 1e-9) << "the longest side fits the box exactly";
+  EXPECT_GT(z, 1.5 * x) << "standing on its feet (+Y up turned to +Z), not lying on its side";
+  EXPECT_EQ(report.at("totals").at("layers").get<std::size_t>(),
+            report.at("derived").at("layers").get<std::size_t>());
+}
+
+TEST(MeshCli, InfoCountsDefectsAndRepairWritesAClosedMesh) {
+  const auto dir = fresh_dir("mesh-info");
+  slicer::Mesh open_box = box_mesh(slicer::Vec3(10, 10, 10));
+  open_box.triangles.resize(10);  // one face gone: a square hole
+  write_binary_stl(with(open_box, box_mesh(slicer::Vec3(2, 2, 2)), slicer::Vec3(20, 0, 0)),
+                   dir + "/open.stl");
+  const auto info = run_strand("mesh open.stl --json", dir);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const auto j = nlohmann::json::parse(info.out).at("info");
+  EXPECT_EQ(j.at("triangles"), 22);
+  EXPECT_EQ(j.at("shells"), 2);
+  EXPECT_EQ(j.at("holes"), 1);
+  EXPECT_EQ(j.at("border_edges"), 4);
+  EXPECT_EQ(j.at("non_manifold_edges"), 0);
+  EXPECT_TRUE(j.at("self_intersections").is_null()) << "not searched on an open mesh";
+  const auto fixed = run_strand("mesh open.stl --repair -o fixed.stl", dir);
+  ASSERT_EQ(fixed.exit_code, 0) << fixed.err;
+  EXPECT_NE(fixed.out.find("  repaired       filled holes: 1"), std::string::npos) << fixed.out;
+  const auto again = nlohmann::json::parse(run_strand("mesh fixed.stl --json", dir).out).at("info");
+  EXPECT_EQ(again.at("holes"), 0);
+  EXPECT_EQ(again.at("border_edges"), 0);
+  EXPECT_EQ(again.at("self_intersections"), 0);
+  EXPECT_NEAR(again.at("volume").get<double>(), 1008.0, 1e-3);
+  expect_input_error(run_strand("mesh open.stl -o x.stl", dir), "add --repair");
+  EXPECT_FALSE(exists(dir + "/x.stl"));
+}
+
 struct BadCase {
   const char* name;
   const char* args;
@@ -164,6 +293,8 @@ class SliceBadInput : public ::testing::TestWithParam<BadCase> {};
 TEST_P(SliceBadInput, ExitTwoOneLineNoFile) {
   const auto dir = plug_dir();
   write_binary_stl(box_mesh(slicer::Vec3(0.5, 20, 5)), dir + "/fin.stl");
+  write_binary_stl(box_mesh(slicer::Vec3(20, 20, 0.1)), dir + "/plate.stl");
+  write_binary_stl(boat_mesh(), dir + "/boat.stl");
   slicer::write_file_atomic(dir + "/empty.stl", "");
   const auto r =
       run_strand(std::string("slice ") + GetParam().args + " -o out.gcode --report out.json", dir);
@@ -188,10 +319,24 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"pattern", "plug.stl --pattern gyroid --nozzle 0.6",
                 "slice.pattern = gyroid: must be one of"},
         BadCase{"too_big", "plug.stl --nozzle 0.6 --gap 1 --mesh-units m",
-                "slice: the part (20000 x 20000 x 6000 mm"},
+                "slice: the part (20000.000 x 20000.000 x 6000.000 mm"},
+        BadCase{"too_big_scaled", "plug.stl --nozzle 0.6 --gap 1 --scale 30",
+                "slice: the part (600.000 x 600.000 x 180.000 mm"},
+        BadCase{"scale", "plug.stl --nozzle 0.6 --gap 1 --scale 0", "slice.scale = 0: must be in"},
+        BadCase{"scale_nan", "plug.stl --nozzle 0.6 --gap 1 --scale nan", "slice.scale = nan"},
+        BadCase{"fit", "plug.stl --nozzle 0.6 --gap 1 --scale-to-fit 30x30",
+                "slice.scale-to-fit = 30x30"},
+        BadCase{"fit_and_scale", "plug.stl --nozzle 0.6 --gap 1 --scale 2 --scale-to-fit 9x9x9",
+                "give --scale or --scale-to-fit, not both"},
+        BadCase{"up", "plug.stl --nozzle 0.6 --gap 1 --up x", "slice.up = x: must be z or y"},
+        BadCase{"plate", "plate.stl --nozzle 0.6 --gap 1",
+                "the part (20.000 x 20.000 x 0.100 mm) is thinner than one layer (nozzle 0.6 mm)"},
+        BadCase{
+            "narrow", "fin.stl --nozzle 0.84 --gap 1",
+            "slice.nozzle = 0.84: the part (0.500 x 20.000 x 5.000 mm) is narrower than one bead"},
+        BadCase{"strict", "boat.stl --nozzle 0.6 --gap 1 --strict", "boat.stl: self-intersecting"},
         BadCase{"units", "plug.stl --nozzle 0.6 --gap 1 --mesh-units ft", "slice.mesh-units = ft"},
         BadCase{"rotate", "plug.stl --nozzle 0.6 --gap 1 --rotate 90,0", "slice.rotate = 90,0"},
-        BadCase{"thin_wall", "fin.stl --nozzle 0.84 --gap 1", "wider than the part's wall near"},
         BadCase{"layer_height", "plug.stl --nozzle 0.6 --gap 1 --layer-height 0.1",
                 "scaffold.layer-height = 0.1"},
         BadCase{"perimeters", "plug.stl --nozzle 0.6 --gap 1 --perimeters 50",

@@ -1,7 +1,7 @@
 // Fuzz target: any bytes as a part or substrate mesh file, in the format the first byte picks
 // (STL, OBJ, PLY, OFF through OpenMesh; glTF, GLB through tinygltf), read, placed and prepared
-// with and without --repair, as `strand slice` does. The readers take a path, so each input is
-// written to a file in a private temporary directory first.
+// with and without --repair, strict and as a soup sliced into layers, as `strand slice` does. The
+// readers take a path, so each input is written to a file in a private temporary directory first.
 #include <unistd.h>
 
 #include <array>
@@ -14,6 +14,7 @@
 #include "slicer/input_error.h"
 #include "slicer/mesh_check.h"
 #include "slicer/mesh_io.h"
+#include "slicer/mesh_slicer.h"
 
 namespace {
 
@@ -30,7 +31,8 @@ const std::string& scratch_dir() {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace strand;
-  static const std::array<const char*, 6> kExtensions = {".stl", ".obj", ".ply", ".off", ".gltf", ".glb"};
+  static const std::array<const char*, 6> kExtensions = {".stl", ".obj",  ".ply",
+                                                         ".off", ".gltf", ".glb"};
   if (size == 0) return 0;
   const std::string path = scratch_dir() + "/part" + kExtensions[data[0] % kExtensions.size()];
   {
@@ -45,6 +47,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         slicer::prepare_mesh(placed, repair, "part");
       } catch (const InputError&) {
       }
+    }
+    // The default path: defects reported, the soup sliced (a few layers over its height).
+    try {
+      const slicer::PreparedMesh p = slicer::prepare_mesh(placed, slicer::PrepareOptions{}, "part");
+      const double height = slicer::bounds(p.mesh).size_mm().z();
+      if (height > 0.0) slicer::slice_layers(p.mesh, height / 4.0, 4);
+    } catch (const InputError&) {
     }
   } catch (const InputError&) {
   }

@@ -111,5 +111,55 @@ TEST(MeshCheck, FlatAndZeroVolumeMeshesAreRejected) {
   EXPECT_NE(prepare_error(flat, false).find("flat mesh"), std::string::npos);
 }
 
+Mesh two_boxes(const Vec3& offset) {
+  Mesh a = box_mesh(Vec3(1, 1, 1));
+  const Mesh b = box_mesh(Vec3(1, 1, 1));
+  const int base = static_cast<int>(a.vertices_mm.size());
+  for (const Vec3& v : b.vertices_mm) a.vertices_mm.push_back(v + offset);
+  for (const auto& t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return a;
+}
+
+TEST(MeshCheck, RepairNeverAddsNonManifoldEdges) {
+  // Two boxes touching along a vertical edge, each with its own vertices (as an indexed
+  // file stores them): welding the duplicate positions would share that edge by 4 triangles.
+  const Mesh m = two_boxes(Vec3(1, 1, 0));
+  ASSERT_EQ(check_edges_as_indexed(m).non_manifold_edges, 0u);
+  ASSERT_GT(check_mesh(m).non_manifold_edges, 0u) << "welded, the edge is non-manifold";
+  const PreparedMesh p = prepare_mesh(m, PrepareOptions{true, false}, "mesh");
+  const MeshCheck after = check_edges_as_indexed(p.mesh);
+  EXPECT_EQ(after.non_manifold_edges, 0u) << ::testing::PrintToString(p.changes);
+  EXPECT_EQ(after.border_edges, 0u);
+  EXPECT_NEAR(signed_volume_mm3(p.mesh), 2.0, 1e-9);
+}
+
+TEST(MeshCheck, DefectsAreReportedNotFatalUnlessStrict) {
+  const Mesh overlapping = two_boxes(Vec3(0.5, 0.5, 0.5));
+  const PreparedMesh p = prepare_mesh(overlapping, PrepareOptions{}, "mesh = part.stl");
+  ASSERT_EQ(p.defects.size(), 1u) << ::testing::PrintToString(p.defects);
+  EXPECT_NE(p.defects[0].find("self-intersecting pairs of triangles resolved by contour union"),
+            std::string::npos)
+      << p.defects[0];
+  try {
+    prepare_mesh(overlapping, PrepareOptions{false, true}, "mesh = part.stl");
+    ADD_FAILURE() << "strict refuses";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh = part.stl: self-intersecting"), std::string::npos);
+  }
+}
+
+TEST(MeshCheck, DoubledAndOppositeTrianglesAreLeftOut) {
+  Mesh m = box_mesh(Vec3(2, 2, 2));
+  m.triangles.push_back(m.triangles[0]);  // a copy
+  const auto t = m.triangles[1];
+  m.triangles.push_back({t[0], t[2], t[1]});  // and a copy facing the other way
+  const PreparedMesh p = prepare_mesh(m, PrepareOptions{}, "mesh");
+  EXPECT_EQ(p.mesh.triangles.size(), 11u) << "the copy goes; the opposite pair goes both";
+  bool said = false;
+  for (const auto& d : p.defects)
+    said = said || d.find("3 doubled triangles left out") != std::string::npos;
+  EXPECT_TRUE(said) << ::testing::PrintToString(p.defects);
+}
+
 }  // namespace
 }  // namespace strand::slicer

@@ -6,6 +6,8 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
 
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -20,15 +22,16 @@ using testing::box_mesh;
 
 // ASCII PLY, written here (the reader's only PLY user).
 void write_ply(const Mesh& m, const std::string& path) {
-  std::string out = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(m.vertices_mm.size()) +
-                    "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
-                    std::to_string(m.triangles.size()) +
-                    "\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string out =
+      "ply\nformat ascii 1.0\nelement vertex " + std::to_string(m.vertices_mm.size()) +
+      "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+      std::to_string(m.triangles.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
   for (const Vec3& v : m.vertices_mm) {
     out += std::to_string(v.x()) + " " + std::to_string(v.y()) + " " + std::to_string(v.z()) + "\n";
   }
   for (const auto& t : m.triangles) {
-    out += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+    out += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) +
+           "\n";
   }
   write_file_atomic(path, out);
 }
@@ -173,8 +176,9 @@ TEST(MeshIo, PlyHeadersAreCheckedBeforeOpenMeshReadsThem) {
   EXPECT_NE(error_of(dir + "/huge.ply").find("PLY header line 3: an element count must be 0 .."),
             std::string::npos);
   EXPECT_NE(error_of(dir + "/nohead.ply").find("no end_header line"), std::string::npos);
-  write_file_atomic(dir + "/glued.ply",  // OpenMesh looped without end on it (mesh_fuzz)
-                    "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_headernt v 0\n");
+  write_file_atomic(
+      dir + "/glued.ply",  // OpenMesh looped without end on it (mesh_fuzz)
+      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_headernt v 0\n");
   EXPECT_NE(error_of(dir + "/glued.ply").find("no end_header line"), std::string::npos);
   write_file_atomic(dir + "/format.ply",  // OpenMesh looped without end on it (mesh_fuzz)
                     "ply\nformat ascii uchaq hnt vertex_indices\nend_header\n0 0 0\n");
@@ -188,6 +192,101 @@ TEST(MeshIo, PlyHeadersAreCheckedBeforeOpenMeshReadsThem) {
   EXPECT_NE(error_of(dir + "/orphan.ply").find("line 3: a property before any element line"),
             std::string::npos)
       << error_of(dir + "/orphan.ply");
+}
+
+// NaN and infinite vertices are named as such (readers merged or dropped them and the check
+// said "no triangles" or "open mesh").
+TEST(MeshIo, NonFiniteVerticesAreNamedInEveryTextFormat) {
+  const auto dir = testing::fresh_dir("mesh-nan");
+  write_file_atomic(dir + "/a.stl",
+                    "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 nan 0\n"
+                    "vertex 0 1 0\nendloop\nendfacet\nendsolid t\n");
+  write_file_atomic(dir + "/a.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n");
+  write_file_atomic(dir + "/a.off", "OFF\n4 1 0\n0 0 0\n1 0 0\n0 -inf 0\n0 0 1\n3 0 1 2\n");
+  Mesh box = box_mesh(Vec3(1, 1, 1));
+  write_ply(box, dir + "/a.ply");
+  std::string ply = testing::slurp(dir + "/a.ply");
+  const std::size_t body = ply.find("end_header\n") + 11;
+  std::string word = ply;
+  ply.replace(body, ply.find(' ', body) - body, "nan");
+  write_file_atomic(dir + "/a.ply", ply);
+  // A word in the body: OpenMesh spun for two minutes on it (also a mesh_fuzz regression).
+  word.replace(body, word.find(' ', body) - body, "nan.000000");
+  write_file_atomic(dir + "/word.ply", word);
+  EXPECT_NE(error_of(dir + "/word.ply").find("PLY line 10: 'nan.000000' is not a number"),
+            std::string::npos)
+      << error_of(dir + "/word.ply");
+  for (const auto& [file, where] : std::vector<std::pair<std::string, std::string>>{
+           {"a.stl", "line 5 has a non-finite coordinate ('nan'"},
+           {"a.obj", "line 3 has a non-finite coordinate ('inf'"},
+           {"a.off", "line 5 has a non-finite coordinate ('-inf'"},
+           {"a.ply", "line 10 has a non-finite coordinate ('nan'"}}) {
+    const std::string e = error_of(dir + "/" + file);
+    EXPECT_NE(e.find(where), std::string::npos) << file << ": " << e;
+  }
+}
+
+std::string tetra_gltf() {
+  // The mesh_fuzz seed: a tetrahedron with its buffer inline (the first byte picks the format).
+  return testing::slurp(std::string(STRAND_SOURCE_DIR) + "/tests/fuzz/seeds/mesh_fuzz/tetra.gltf")
+      .substr(1);
+}
+
+// glTF accessors, views and buffers are checked against each other before any byte is read
+// (a bufferView out of range segfaulted; counts times strides overflowed); each case is also
+// a mesh_fuzz regression input.
+TEST(MeshIo, GltfStructureIsBoundedBeforeReading) {
+  const auto dir = testing::fresh_dir("mesh-gltf-bounds");
+  const std::string regressions =
+      std::string(STRAND_SOURCE_DIR) + "/tests/fuzz/regressions/mesh_fuzz/";
+  for (const auto& [file, says] : std::vector<std::pair<std::string, std::string>>{
+           {"gltf-bufferview-out-of-range.gltf", "POSITION accessor is not float VEC3 data inside"},
+           {"gltf-view-buffer-out-of-range.gltf", "mesh = "},
+           {"gltf-accessor-count-overflow.gltf", "mesh = "},
+           {"gltf-view-past-buffer.gltf", "mesh = "}}) {
+    write_file_atomic(dir + "/" + file, testing::slurp(regressions + file).substr(1));
+    const std::string e = error_of(dir + "/" + file);
+    EXPECT_NE(e.find(says), std::string::npos) << file << ": " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << file;
+  }
+  // Nodes listing the next one twice, 63 deep: 2^63 paths, each node visited once.
+  write_file_atomic(dir + "/fan.gltf",
+                    testing::slurp(regressions + "gltf-node-fan-out.gltf").substr(1));
+  EXPECT_EQ(read_mesh_file(dir + "/fan.gltf").triangles.size(), 4u);
+  // A chain deeper than 64 nodes is refused.
+  nlohmann::json deep = nlohmann::json::parse(tetra_gltf());
+  deep["nodes"] = nlohmann::json::array();
+  for (int i = 0; i < 80; ++i) deep["nodes"].push_back({{"children", {i + 1}}});
+  deep["nodes"].push_back({{"mesh", 0}});
+  write_file_atomic(dir + "/deep.gltf", deep.dump());
+  EXPECT_NE(error_of(dir + "/deep.gltf").find("the node tree is deeper than 64 levels"),
+            std::string::npos)
+      << error_of(dir + "/deep.gltf");
+}
+
+TEST(MeshIo, GltfBuffersNamedByUriCountAgainstTheInputLimit) {
+  const auto dir = testing::fresh_dir("mesh-gltf-uri");
+  nlohmann::json g = nlohmann::json::parse(tetra_gltf());
+  g["buffers"][0]["uri"] = "big.bin";
+  write_file_atomic(dir + "/big.gltf", g.dump());
+  // A sparse 300 MiB file: refused by its size, never read.
+  std::filesystem::resize_file(
+      [&] {
+        write_file_atomic(dir + "/big.bin", "x");
+        return dir + "/big.bin";
+      }(),
+      std::uintmax_t{300} << 20);
+  const std::string e = error_of(dir + "/big.gltf");
+  EXPECT_NE(e.find("mesh = " + dir +
+                   "/big.gltf: 'big.bin' would take the mesh and the files it "
+                   "names past the 256 MiB input limit"),
+            std::string::npos)
+      << e;
+  // An embedded image that is not an image at all is never decoded: the mesh reads.
+  nlohmann::json with_image = nlohmann::json::parse(tetra_gltf());
+  with_image["images"] = {{{"uri", "data:image/png;base64,AAAAAAAA"}}};
+  write_file_atomic(dir + "/image.gltf", with_image.dump());
+  EXPECT_EQ(read_mesh_file(dir + "/image.gltf").triangles.size(), 4u);
 }
 
 // OpenMesh's OFF reader loops for as long as its counts say when a number does not parse
