@@ -2,6 +2,7 @@
 // [--svg-layer N OUT.svg]`: exit 0 when the file passes, 1 when it has problems, 2 for bad
 // input. A pose CSV (FILE.csv, with the robot cell as --machine) and rotary G-code
 // (;ROTARY_AXIS: header) are mapped back onto their cylinder (postprocess/inspect/pose_check.h).
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -88,6 +89,14 @@ int run_check(const CheckArgs& a) {
                      ": must be in [0.001, 1] (mm)");
   }
   const std::string text = slicer::read_file(a.file);
+  // A set whose writing was killed between two renames still has its journal: its files may
+  // be half old and half new (a KRL .src that does not match its .dat).
+  if (std::filesystem::exists(a.file + ".strand-commit")) {
+    std::cout << "check: " << a.file
+              << " belongs to an output set whose writing was interrupted (its journal "
+              << a.file << ".strand-commit is still there): run the job again to complete it\n";
+    return 1;
+  }
   std::unique_ptr<machines::MachineProfile> machine;
   if (!a.machine.empty())
     machine = std::make_unique<machines::MachineProfile>(machines::load_profile(a.machine));

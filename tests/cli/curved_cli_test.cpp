@@ -101,6 +101,27 @@ TEST(CurvedCli, ATamperedCsvFailsTheCheckWithExitOne) {
   EXPECT_NE(check.out.find("poses off the nozzle tip (1)"), std::string::npos) << check.out;
 }
 
+TEST(CurvedCli, AnInterruptedOutputSetFailsTheCheckUntilTheNextRunCompletesIt) {
+  const auto dir = fresh_dir("curved-journal");
+  const std::string job = "job '" + samples_dir() + "/missing-rib-cylinder.json' -o p.csv";
+  ASSERT_EQ(run_strand(job, dir).exit_code, 0);
+  // What a kill between two renames leaves: the journal and the set's remaining temps.
+  const std::string dat = slurp(dir + "/p.dat");
+  std::ofstream(dir + "/p.dat.strand-tmp") << dat;
+  std::ofstream(dir + "/p.dat") << "&ACCESS RVP\nDEFDAT p\nENDDAT\n";  // an older .dat
+  std::ofstream(dir + "/p.csv.strand-commit")
+      << "strand output set v1\n"
+      << dir << "/p.dat.strand-tmp\t" << dir << "/p.dat\n";
+  const auto check = run_strand("check p.csv --machine kuka-iiwa14-wasp-cylinder", dir);
+  EXPECT_EQ(check.exit_code, 1);
+  EXPECT_NE(check.out.find("interrupted"), std::string::npos) << check.out;
+  ASSERT_EQ(run_strand(job, dir).exit_code, 0);
+  EXPECT_FALSE(exists(dir + "/p.csv.strand-commit"));
+  EXPECT_FALSE(exists(dir + "/p.dat.strand-tmp"));
+  EXPECT_EQ(slurp(dir + "/p.dat"), dat);
+  EXPECT_EQ(run_strand("check p.csv --machine kuka-iiwa14-wasp-cylinder", dir).exit_code, 0);
+}
+
 TEST(CurvedCli, BadInputIsOneLineWithoutOutput) {
   const std::string cyl = "--substrate cylinder --substrate-length 80 ";
   expect_rejected(kMissingRib + cyl + "--substrate-radius 0" + kRobot + " -o p.csv",
