@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <limits>
 
 #include "slicer/input_error.h"
 
@@ -59,9 +60,14 @@ bool looks_like_gcode(std::string_view c) {
 long number_after(std::string_view s) {
   std::size_t i = 0;
   while (i < s.size() && !std::isdigit(static_cast<unsigned char>(s[i]))) ++i;
+  // Saturates instead of overflowing: a firmware that names a line past any the file has
+  // (a garbled "Resend: 888…") is answered as a resend of a line never sent.
+  constexpr long kMax = std::numeric_limits<long>::max();
   long n = 0;
-  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
-    n = n * 10 + (s[i++] - '0');
+  for (; i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])); ++i) {
+    const int digit = s[i] - '0';
+    n = n > (kMax - digit) / 10 ? kMax : n * 10 + digit;
+  }
   return n;
 }
 
