@@ -57,9 +57,12 @@ struct PlyHeaderReader {
       if (version != "1.0") fail("the format version must be 1.0");
       format = true;
     } else if (key == "element") {
-      std::string name;
-      double count = -1.0;
-      if (!(w >> name >> count) || count < 0 || count > static_cast<double>(size_bytes))
+      // The count as digits only: OpenMesh misreads ".4" or "1e9" and allocates gigabytes.
+      std::string name, count_text;
+      const bool read = static_cast<bool>(w >> name >> count_text);
+      const bool digits = read && !count_text.empty() && count_text.size() <= 19 &&
+                          count_text.find_first_not_of("0123456789") == std::string::npos;
+      if (!digits || std::stod(count_text) > static_cast<double>(size_bytes))
         fail("an element count must be 0 .. " + std::to_string(size_bytes) + " (the file's bytes)");
       ++elements;
       names.insert(name);
@@ -242,6 +245,35 @@ void vet_finite_vertices(const std::string& path, const std::string& ext,
                            t.substr(0, 20) + "' is not a number");
         }
       }
+    }
+  }
+}
+
+void vet_obj_faces(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  long long line_no = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_no;
+    std::istringstream words(line.substr(0, line.find('#')));
+    std::string word;
+    if (!(words >> word) || word != "f") continue;
+    int corners = 0;
+    while (words >> word) {
+      // "v", "v/vt", "v//vn" or "v/vt/vn": the vertex index is a non-zero integer.
+      const std::string v = word.substr(0, word.find('/'));
+      const std::size_t digits = v.find_first_not_of("-+");
+      const bool index = digits != std::string::npos && digits <= 1 &&
+                         v.find_first_not_of("0123456789", digits) == std::string::npos &&
+                         v.find_first_not_of("0", digits) != std::string::npos;
+      if (!index) {
+        throw InputError("mesh = " + path + ": OBJ line " + std::to_string(line_no) +
+                         ": a face corner must start with a vertex number");
+      }
+      ++corners;
+    }
+    if (corners < 3) {
+      throw InputError("mesh = " + path + ": OBJ line " + std::to_string(line_no) +
+                       ": a face needs at least 3 corners");
     }
   }
 }

@@ -33,4 +33,9 @@ void vet_off_file(const std::string& path, std::uintmax_t size_bytes);
 void vet_finite_vertices(const std::string& path, const std::string& ext,
                          std::uintmax_t size_bytes);
 
+// OpenMesh's OBJ reader aborts (an assertion) on a face line none of whose corners names a
+// vertex (mesh_fuzz). Throws InputError "mesh = PATH: OBJ line N: ..." unless every `f` line
+// has at least 3 corners, each starting with a non-zero vertex index.
+void vet_obj_faces(const std::string& path);
+
 }  // namespace strand::slicer

@@ -112,6 +112,7 @@ Mesh read_mesh_file(const std::string& path) {
     if (ext == ".ply") vet_ply_header(path, size);
     vet_finite_vertices(path, ext, size);  // before the OFF check: NaN is named as such
     if (ext == ".off") vet_off_file(path, size);
+    if (ext == ".obj") vet_obj_faces(path);
     m = read_openmesh(path, ext);
   } else {
     throw InputError("mesh = " + path + ": unknown format '" + ext +

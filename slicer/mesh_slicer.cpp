@@ -171,9 +171,11 @@ void close_gaps(std::vector<Chain> open, std::vector<Chain>& closed, ContourStat
   if (open.empty()) return;
   const double cell = kMaxContourGapMm;
   auto cell_of = [&](const Vec2& p) {
-    return std::pair<std::int64_t, std::int64_t>(
-        static_cast<std::int64_t>(std::floor(p.x() / cell)),
-        static_cast<std::int64_t>(std::floor(p.y() / cell)));
+    // Clamped before the cast: a far coordinate must not overflow (UB found by mesh_fuzz).
+    const auto index = [&](double v) {
+      return static_cast<std::int64_t>(std::clamp(std::floor(v / cell), -1e15, 1e15));
+    };
+    return std::pair<std::int64_t, std::int64_t>(index(p.x()), index(p.y()));
   };
   struct CellHash {
     std::size_t operator()(const std::pair<std::int64_t, std::int64_t>& c) const {
