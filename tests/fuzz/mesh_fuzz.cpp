@@ -12,6 +12,8 @@
 #include <string>
 
 #include "slicer/input_error.h"
+#include <filesystem>
+
 #include "slicer/mesh_check.h"
 #include "slicer/mesh_io.h"
 #include "slicer/mesh_slicer.h"
@@ -20,7 +22,8 @@ namespace {
 
 const std::string& scratch_dir() {
   static const std::string dir = [] {
-    std::string pattern = "/tmp/strand-mesh-fuzz-XXXXXX";
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "strand-mesh-fuzz-XXXXXX").string();
     if (!mkdtemp(pattern.data())) std::abort();
     return pattern;
   }();
