@@ -14,6 +14,9 @@ CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release $(if $(CI),-DSTRAND_WERROR=ON,)
 # Sanitizer and fuzzing build (clang): ASan + UBSan over the whole test suite, libFuzzer targets.
 SANITIZE_PACKAGES := clang libclang-rt-14-dev
 SAN_DIR := build-asan
+# -O1 and line tables: what the sanitizers need for speed and file:line stack traces, at about
+# half the compile and link time of -O2 -g.
+SAN_FLAGS := -O1 -gline-tables-only
 FUZZ_SECONDS ?= 600
 
 .PHONY: all deps build run test bench bench-micro clean sanitize fuzz fuzz-ci sanitize-build
@@ -60,7 +63,7 @@ bench-micro: build
 sanitize-build: deps
 	@$(MAKE) deps DEBIAN_PACKAGES="$(SANITIZE_PACKAGES)"
 	@cmake -S . -B $(SAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-	  -DSTRAND_SANITIZE=ON -DSTRAND_FUZZ=ON >/dev/null
+	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$(SAN_FLAGS)" -DSTRAND_SANITIZE=ON -DSTRAND_FUZZ=ON >/dev/null
 	@cmake --build $(SAN_DIR) -j$$(nproc)
 
 # Every test under AddressSanitizer + UndefinedBehaviorSanitizer (any report fails the test).

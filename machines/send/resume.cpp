@@ -22,6 +22,8 @@ struct Block {
   bool has_g(int code10) const { return std::find(g.begin(), g.end(), code10) != g.end(); }
 };
 
+constexpr double kLargestWord = 1e12;
+
 Block block_of(const std::string& c) {
   Block b;
   for (std::size_t i = 0; i < c.size();) {
@@ -49,12 +51,17 @@ Block block_of(const std::string& c) {
       }
     }
     if (!digits) continue;
+    // No firmware has a word this large; bounding it keeps every integer conversion below
+    // defined (a 40-digit "P555..." once overflowed a long).
+    v = std::min(v, kLargestWord);
     if (negative) v = -v;
     i = j;
+    // A code past any firmware's numbering is kept as an unknown code (-1): it sets no state.
+    const int code10 = std::abs(v) < 100000.0 ? static_cast<int>(std::lround(v * 10)) : -1;
     if (letter == 'G') {
-      b.g.push_back(static_cast<int>(std::lround(v * 10)));
+      b.g.push_back(code10);
     } else if (letter == 'M') {
-      b.m.push_back(static_cast<int>(std::lround(v * 10)));
+      b.m.push_back(code10);
     } else if (!b.w.count(letter)) {
       b.w[letter] = v;
     }

@@ -3,6 +3,7 @@
 // instead of a crash, a hang or gigabytes of memory.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <string>
 
 #include "slicer/file_io.h"
@@ -65,51 +66,74 @@ std::string many_curves() {
              repeat(" c0 90 90 90 90 0 c0 -90 -90 -90 -90 0", 5000) + "'/>");
 }
 
+// The drawing is made when its test runs: made at registration, every test process (and the
+// test listing) would build tens of megabytes it never uses.
 struct Case {
   const char* name;
-  std::string svg;
+  std::function<std::string()> svg;
   std::string args;
   std::string must_mention;
 };
 
 std::vector<Case> cases() {
   return {
-      {"nested_groups", nested("<g>", "</g>", 100000), "",
+      {"nested_groups", [] { return std::string(nested("<g>", "</g>", 100000)); }, "",
        "<g>: elements nest deeper than 256 levels"},
-      {"nested_transforms", nested("<g transform='translate(0.001 0)'>", "</g>", 10000), "",
+      {"nested_transforms",
+       [] { return std::string(nested("<g transform='translate(0.001 0)'>", "</g>", 10000)); }, "",
        "nest deeper than 256"},
-      {"use_doubling", use_doubling(), "", "more than 250000 elements copied by <use>"},
-      {"bezier_1e308", svg("<path d='M0 0 C1e308 0 0 10 10 10' stroke='black' fill='none'/>"), "",
-       "<path>: a coordinate is 1e+308 mm after transforms (at most 1e+07 mm"},
+      {"use_doubling", [] { return std::string(use_doubling()); }, "",
+       "more than 250000 elements copied by <use>"},
+      {"bezier_1e308",
+       [] {
+         return std::string(svg("<path d='M0 0 C1e308 0 0 10 10 10' stroke='black' fill='none'/>"));
+       },
+       "", "<path>: a coordinate is 1e+308 mm after transforms (at most 1e+07 mm"},
       {"not_finite",
-       svg("<g transform='scale(1e300)'><path id='far' d='M0 0 L1e300 0' stroke='black'/></g>"), "",
-       "<path id=\"far\">: a coordinate is not finite"},
+       [] {
+         return std::string(svg(
+             "<g transform='scale(1e300)'><path id='far' d='M0 0 L1e300 0' stroke='black'/></g>"));
+       },
+       "", "<path id=\"far\">: a coordinate is not finite"},
       {"clipper_range",
-       svg("<rect width='1e308' height='10' stroke='black' fill='none'/><path d='M0 0 L10 0 L10 10 "
-           "Z'/>"),
+       [] {
+         return std::string(
+             svg("<rect width='1e308' height='10' stroke='black' fill='none'/><path d='M0 0 L10 0 "
+                 "L10 10 "
+                 "Z'/>"));
+       },
        "", "<rect>: a coordinate is 1e+308 mm"},
-      {"path_1e13_long", svg("<path d='M0 0 L1e13 0 L1e13 1e13 Z'/>"), "",
-       "a coordinate is 1e+13 mm"},
-      {"far_fill_checked_before_hatching", svg("<path d='M0 0 L5e6 0 L5e6 5e6 Z'/>"),
+      {"path_1e13_long", [] { return std::string(svg("<path d='M0 0 L1e13 0 L1e13 1e13 Z'/>")); },
+       "", "a coordinate is 1e+13 mm"},
+      {"far_fill_checked_before_hatching",
+       [] { return std::string(svg("<path d='M0 0 L5e6 0 L5e6 5e6 Z'/>")); },
        "--hatch-spacing 0.001", "does not fit"},
-      {"tolerance_1e_minus_300", svg(kLine), "--tolerance 1e-300",
+      {"tolerance_1e_minus_300", [] { return std::string(svg(kLine)); }, "--tolerance 1e-300",
        "plot.tolerance = 1e-300: must be in [0.001, 5]"},
-      {"fills_of_the_whole_drawing", many_fills(),
+      {"fills_of_the_whole_drawing", [] { return std::string(many_fills()); },
        "--fit 190x190 --hatch-angle 0 --hatch-spacing 0.01",
        "plot.hatch-spacing: the outlines and fills would draw up to"},
-      {"curve_points", many_curves(), "--tolerance 0.001 --fit 100x100",
+      {"curve_points", [] { return std::string(many_curves()); }, "--tolerance 0.001 --fit 100x100",
        "plot.tolerance = 0.001: the curves would flatten"},
-      {"text_chars", svg("<text y='10'>" + repeat("a", 100001) + "</text>"), "",
+      {"text_chars",
+       [] { return std::string(svg("<text y='10'>" + repeat("a", 100001) + "</text>")); }, "",
        "text has more than 100000 characters"},
-      {"billion_laughs", billion_laughs(), "",
+      {"billion_laughs", [] { return std::string(billion_laughs()); }, "",
        "DTD entities expand to more than 16 MiB (at &l10;)"},
-      {"entity_cycle", "<!DOCTYPE svg [<!ENTITY a '&b;'><!ENTITY b '&a;'>]>" + svg("&a;"), "",
-       "refers to itself"},
-      {"markup_count", svg(repeat("<g/>", 4000001)), "",
+      {"entity_cycle",
+       [] {
+         return std::string("<!DOCTYPE svg [<!ENTITY a '&b;'><!ENTITY b '&a;'>]>" + svg("&a;"));
+       },
+       "", "refers to itself"},
+      {"markup_count", [] { return std::string(svg(repeat("<g/>", 4000001))); }, "",
        "'<' and '=' (elements and attributes; at most 4000000)"},
-      {"path_pieces", svg("<path stroke='black' d='M0 0" + repeat("h1", 2000001) + "'/>"), "",
-       "more than 2000000 curve pieces"},
-      {"fit_scale", svg("<line x2='1e-6' stroke='black'/>"), "--fit 100x100", "plot.fit = 100x100"},
+      {"path_pieces",
+       [] {
+         return std::string(svg("<path stroke='black' d='M0 0" + repeat("h1", 2000001) + "'/>"));
+       },
+       "", "more than 2000000 curve pieces"},
+      {"fit_scale", [] { return std::string(svg("<line x2='1e-6' stroke='black'/>")); },
+       "--fit 100x100", "plot.fit = 100x100"},
   };
 }
 
@@ -117,7 +141,7 @@ class PlotLimits : public ::testing::TestWithParam<Case> {};
 
 TEST_P(PlotLimits, ExitTwoOneLineNoFile) {
   const auto dir = fresh_dir("limits");
-  slicer::write_file_atomic(dir + "/in.svg", GetParam().svg);
+  slicer::write_file_atomic(dir + "/in.svg", GetParam().svg());
   const auto r = run_strand(
       "plot in.svg --machine xy-plotter-servo -o out.gcode --report out.json " + GetParam().args,
       dir);

@@ -32,9 +32,9 @@ struct ArcCase {
 // Names the case in test listings instead of dumping its bytes.
 void PrintTo(const ArcCase& c, std::ostream* os) { *os << c.name; }
 
-class ChordBound : public ::testing::TestWithParam<ArcCase> {};
+class ArcChordBound : public ::testing::TestWithParam<ArcCase> {};
 
-TEST_P(ChordBound, EveryChordWithinTolerance) {
+TEST_P(ArcChordBound, EveryChordWithinTolerance) {
   const auto& c = GetParam();
   const Vec2 center(3, -2);
   const Vec2 from = center + Vec2(c.radius_mm, 0);
@@ -51,13 +51,13 @@ TEST_P(ChordBound, EveryChordWithinTolerance) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Arcs, ChordBound,
-    ::testing::Values(ArcCase{"thesis_node_quarter", 1.6, 90, 0.01, true},
-                      ArcCase{"large_half_circle", 50, 180, 0.01, false},
-                      ArcCase{"tiny_radius_coarse_tolerance", 0.2, 270, 0.05, true},
-                      ArcCase{"fine_tolerance", 5, 120, 0.001, false}),
-    [](const auto& info) { return std::string(info.param.name); });
+INSTANTIATE_TEST_SUITE_P(Arcs, ArcChordBound,
+                         ::testing::Values(ArcCase{"thesis_node_quarter", 1.6, 90, 0.01, true},
+                                           ArcCase{"large_half_circle", 50, 180, 0.01, false},
+                                           ArcCase{"tiny_radius_coarse_tolerance", 0.2, 270, 0.05,
+                                                   true},
+                                           ArcCase{"fine_tolerance", 5, 120, 0.001, false}),
+                         [](const auto& info) { return std::string(info.param.name); });
 
 TEST(ArcSegmentation, FullCircleWhenStartEqualsEnd) {
   const auto pts = segment_arc({1, 0}, {0, 0}, {1, 0}, true, 0.01);
