@@ -3,7 +3,7 @@
 
 DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev libcli11-dev \
                    libgtest-dev libbenchmark-dev libpugixml-dev libpolyclipping-dev libtbb-dev \
-                   libcairo2-dev libtinygltf-dev chromium python3 libhersheyfont-dev hershey-fonts-data \
+                   libcairo2-dev libtinygltf-dev python3 libhersheyfont-dev hershey-fonts-data \
                    libfreetype-dev libfontconfig-dev fonts-dejavu-core libpotrace-dev libstb-dev \
                    libnetpbm-dev libcgal-dev libopenmesh-dev
 MAKEFLAGS += --no-print-directory
@@ -15,11 +15,11 @@ CMAKE_FLAGS := -DCMAKE_BUILD_TYPE=Release $(if $(CI),-DSTRAND_WERROR=ON,)
 SANITIZE_PACKAGES := clang libclang-rt-14-dev
 SAN_DIR := build-asan
 # -O1 and line tables: what the sanitizers need for speed and file:line stack traces, at about
-# half the compile and link time of -O2 -g.
-SAN_FLAGS := -O1 -gline-tables-only
+# half the compile and link time of -O2 -g (NDEBUG as RelWithDebInfo has it).
+SAN_FLAGS := -O1 -gline-tables-only -DNDEBUG
 FUZZ_SECONDS ?= 600
 
-.PHONY: all deps build run test bench bench-micro clean sanitize fuzz fuzz-ci sanitize-build
+.PHONY: all deps configure build build-strand install run test bench bench-micro clean sanitize fuzz fuzz-ci sanitize-build
 
 all: build
 
@@ -37,16 +37,31 @@ deps:
 	  fi; \
 	fi
 
-build: deps
+configure: deps
 	@cmake -S . -B $(BUILD_DIR) $(CMAKE_FLAGS) >/dev/null
+
+# Everything: the program, the test executable and the benchmarks.
+build: configure
 	@cmake --build $(BUILD_DIR) -j$$(nproc)
 
-run: build
+# The demo needs the strand program only (tests and benchmarks are built by `make test` and
+# `make bench`).
+build-strand: configure
+	@cmake --build $(BUILD_DIR) -j$$(nproc) --target strand
+
+run: build-strand
 	@./samples/run_demo.sh $(STRAND) out
 
+# bin/strand, share/strand/machines, share/man/man1 (strand.1 and one page per command),
+# bash and zsh completion, share/doc/strand. `make install PREFIX=~/.local` needs no root.
+PREFIX ?= /usr/local
+install: build-strand
+	@cmake --install $(BUILD_DIR) --prefix "$(PREFIX)"
+
 # Test-only tools: javac/java compile and run the generated Sunrise programs against stand-in
-# classes (tests/machines/sunrise_writer_test.cpp).
-TEST_PACKAGES := openjdk-17-jdk-headless
+# classes (tests/machines/sunrise_writer_test.cpp); Chromium loads the HTML previews headless;
+# groff checks the manual pages.
+TEST_PACKAGES := openjdk-17-jdk-headless chromium groff-base
 
 test: build
 	@$(MAKE) deps DEBIAN_PACKAGES="$(TEST_PACKAGES)"

@@ -113,13 +113,80 @@ void add_job_command(CLI::App& app, Action& action) {
 }
 
 void add_machines_command(CLI::App& app, Action& action) {
-  CLI::App* sub = app.add_subcommand("machines", "list the shipped machine profiles");
-  sub->callback([&action] {
-    action = [] {
-      for (const auto& [name, description] : machines::list_profiles()) {
-        std::cout << name << "  " << description << "\n";
+  CLI::App* sub = app.add_subcommand(
+      "machines", "list the machine profiles (shipped and your own), show or check one");
+  auto json = std::make_shared<bool>(false);
+  sub->add_flag("--json", *json, "the list as JSON (name, description, origin)");
+  sub->require_subcommand(0, 1);
+  sub->callback([sub, &action, json] {
+    if (!sub->get_subcommands().empty()) return;  // show / check set the action
+    action = [json] {
+      const auto catalog = machines::profile_catalog();
+      if (*json) {
+        nlohmann::json list = nlohmann::json::array();
+        for (const auto& p : catalog) {
+          list.push_back({{"name", p.name},
+                          {"description", p.description},
+                          {"origin", p.origin},
+                          {"shadows_shipped", p.shadows_shipped}});
+        }
+        std::cout << list.dump(2) << "\n";
+        return 0;
+      }
+      for (const auto& p : catalog) {
+        std::cout << p.name << "  " << p.description;
+        if (p.origin != "shipped") {
+          std::cout << "  [" << p.origin << (p.shadows_shipped ? ", shadows the shipped one" : "")
+                    << "]";
+        }
+        std::cout << "\n";
       }
       return 0;
+    };
+  });
+
+  CLI::App* show = sub->add_subcommand("show", "print a profile's JSON (to copy and edit)");
+  auto name = std::make_shared<std::string>();
+  show->add_option("name", *name, "profile name")->required();
+  show->callback([&action, name] {
+    action = [name] {
+      for (const auto& p : machines::profile_catalog()) {
+        if (p.name == *name) {
+          std::cout << p.json_text << (p.json_text.ends_with("\n") ? "" : "\n");
+          return 0;
+        }
+      }
+      machines::load_profile(*name);  // the unknown-machine message with the names
+      return 2;
+    };
+  });
+
+  CLI::App* check =
+      sub->add_subcommand("check", "validate a profile file: every problem, one per line");
+  auto file = std::make_shared<std::string>();
+  check->add_option("file", *file, "profile (.json)")->required();
+  check->callback([&action, file] {
+    action = [file] {
+      const std::string text = slicer::read_file(*file);
+      const auto j = slicer::parse_json(text, "machines.check = " + *file);
+      const std::string origin = "machine " + *file;
+      try {
+        const auto profile = machines::profile_from_json(j, origin);
+        std::cout << *file << ": ok (" << machines::to_string(profile.volume.kind) << ", "
+                  << machines::to_string(profile.firmware) << ")\n";
+        return 0;
+      } catch (const InputError& e) {
+        // Each problem starts with the origin; the joined message is split back at them.
+        const std::string all = e.what(), separator = "; " + origin + ":";
+        std::size_t start = 0;
+        while (true) {
+          const auto next = all.find(separator, start);
+          std::cerr << all.substr(start, next - start) << "\n";
+          if (next == std::string::npos) break;
+          start = next + 2;
+        }
+        return 2;
+      }
     };
   });
 }

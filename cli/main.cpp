@@ -6,8 +6,12 @@
 #include <new>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
+#include "cli/manual.h"
+#include "cli/suggest.h"
+#include "cli/version.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 
@@ -42,6 +46,7 @@ int fail(const std::string& message) {
 int run(int argc, char** argv) {
   CLI::App app{"strand: toolpaths for Direct Ink Writing and pen plotting (mm, mm/min)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", strand::cli::version_text());
   strand::cli::Action action;
   strand::cli::add_generator_commands(app, action);
   strand::cli::add_job_command(app, action);
@@ -56,14 +61,21 @@ int run(int argc, char** argv) {
   strand::cli::add_preview_command(app, action);
   strand::cli::add_slice_command(app, action);
   strand::cli::add_mesh_command(app, action);
+  strand::cli::add_manual_commands(app, action);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion&) {
+    std::cout << strand::cli::version_text();
+    return 0;
   } catch (const CLI::ParseError& e) {
-    return fail(e.what());
+    // An unknown command or flag is named with the nearest known one; other refusals keep
+    // CLI11's message.
+    const std::vector<std::string> args(argv + 1, argv + argc);
+    return fail(strand::cli::explain_unknown_words(app, args).value_or(e.what()));
   }
   return action ? action() : 0;
 }

@@ -2,6 +2,9 @@
 #include "machines/profile.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
 
 #include "machines/builtin_profiles.h"
 #include "machines/profile_schema.h"
@@ -171,6 +174,30 @@ MachineProfile profile_from_json(const nlohmann::json& j, const std::string& ori
   return p;
 }
 
+std::string user_profile_dir() {
+  const char* xdg = std::getenv("XDG_CONFIG_HOME");
+  if (xdg && *xdg == '/') return std::string(xdg) + "/strand/machines";
+  const char* home = std::getenv("HOME");
+  if (home && *home) return std::string(home) + "/.config/strand/machines";
+  return "";
+}
+
+namespace {
+
+// The user's file for a profile name, "" when there is none. Names are plain file stems
+// (no path separators, no leading dot), so a name never reaches outside the directory.
+std::string user_profile_file(const std::string& name) {
+  const auto dir = user_profile_dir();
+  if (dir.empty() || name.empty() || name[0] == '.' || name.find('/') != std::string::npos) {
+    return "";
+  }
+  const std::string path = dir + "/" + name + ".json";
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec) ? path : "";
+}
+
+}  // namespace
+
 MachineProfile load_profile(const std::string& name_or_path) {
   const bool is_path = name_or_path.find('/') != std::string::npos ||
                        (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
@@ -181,6 +208,8 @@ MachineProfile load_profile(const std::string& name_or_path) {
     } catch (const InputError&) {
       throw InputError("machine = " + name_or_path + ": cannot read the profile file");
     }
+  } else if (const auto user = user_profile_file(name_or_path); !user.empty()) {
+    text = slicer::read_file(user);
   } else {
     const auto& all = builtin_profiles();
     auto it = std::find_if(all.begin(), all.end(),
@@ -195,6 +224,42 @@ MachineProfile load_profile(const std::string& name_or_path) {
   }
   const nlohmann::json j = slicer::parse_json(text, "machine = " + name_or_path);
   return profile_from_json(j, "machine " + name_or_path);
+}
+
+std::vector<ProfileEntry> profile_catalog() {
+  std::map<std::string, ProfileEntry> by_name;
+  for (const auto& b : builtin_profiles()) {
+    const auto j = nlohmann::json::parse(b.json);
+    by_name[b.name] = {b.name, j.value("description", std::string()), "shipped", false, b.json};
+  }
+  const auto dir = user_profile_dir();
+  std::error_code ec;
+  if (!dir.empty() && std::filesystem::is_directory(dir, ec)) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
+      if (files.size() == 1000) break;
+      if (e.path().extension() == ".json" && !user_profile_file(e.path().stem().string()).empty()) {
+        files.push_back(e.path());
+      }
+    }
+    std::sort(files.begin(), files.end());
+    for (const auto& f : files) {
+      const std::string name = f.stem().string();
+      ProfileEntry entry{name, "", f.string(), by_name.count(name) > 0, ""};
+      try {
+        entry.json_text = slicer::read_file(f.string());
+        const auto j = slicer::parse_json(entry.json_text, f.string());
+        entry.description =
+            j.is_object() ? j.value("description", std::string()) : "not a JSON object";
+      } catch (const std::exception& e) {
+        entry.description = e.what();
+      }
+      by_name[name] = entry;
+    }
+  }
+  std::vector<ProfileEntry> out;
+  for (auto& [name, entry] : by_name) out.push_back(std::move(entry));
+  return out;
 }
 
 std::vector<std::pair<std::string, std::string>> list_profiles() {

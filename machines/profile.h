@@ -96,9 +96,26 @@ struct MachineProfile {
   RotaryAxis rotary;                 // enabled for rotary
 };
 
-// Loads a shipped profile by name, or a user profile from a path ending in .json.
-// Throws InputError naming the key path of every problem.
+// Loads a profile by name — the user's own (user_profile_dir()/NAME.json) before a shipped
+// one — or from a path ending in .json. Throws InputError naming the key path of every problem.
 MachineProfile load_profile(const std::string& name_or_path);
+
+// A lab's own profiles: $XDG_CONFIG_HOME/strand/machines, else ~/.config/strand/machines
+// ("" when neither variable is set).
+std::string user_profile_dir();
+
+// One profile `--machine NAME` can name: shipped, or a user file (which wins over a shipped
+// profile of the same name: `shadows_shipped`).
+struct ProfileEntry {
+  std::string name;
+  std::string description;
+  std::string origin;  // "shipped" or the user file's path
+  bool shadows_shipped = false;
+  std::string json_text;  // the profile as written
+};
+// Every name, sorted; a user file that cannot be read is listed with its problem as the
+// description. At most 1000 user files are read.
+std::vector<ProfileEntry> profile_catalog();
 // Parses and validates profile JSON; `origin` names the file in messages.
 MachineProfile profile_from_json(const nlohmann::json& j, const std::string& origin);
 // Names and one-line descriptions of the shipped profiles, sorted by name.
