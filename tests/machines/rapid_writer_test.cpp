@@ -41,6 +41,10 @@ const char* const kAbbScaffold =
     "scaffold --nozzle 0.8 --gap 1.5 --size 40x30 --layers 4 --substrate cylinder "
     "--substrate-radius 25 --substrate-length 60";
 
+Eigen::Matrix3d abb_rotation(double w, double x, double y, double z) {
+  return Eigen::Quaterniond(w, x, y, z).toRotationMatrix();
+}
+
 Joints abb_deg(std::initializer_list<double> deg) {
   Joints q = Joints::Zero();
   int i = 0;
@@ -72,6 +76,12 @@ TEST(AbbKinematics, TheCalibrationPostureMatchesTheDataSheet) {
   EXPECT_LT((f.translation() - Vec3(451.0 + 82.0, 0.0, 399.0 + 448.0 + 42.0)).norm(), 1e-9)
       << f.translation().transpose();
   EXPECT_LT((f.linear().col(2) - Vec3::UnitX()).norm(), 1e-9);
+  // tool0 at the calibration posture: ABB's quaternion [0.707107, 0, 0.707107, 0].
+  EXPECT_LT(abb_angle_between(f.linear(), abb_rotation(std::sqrt(0.5), 0, std::sqrt(0.5), 0)),
+            1e-9);
+  // Axis 2 positive tilts the upper arm forward, axis 3 positive the forearm down.
+  EXPECT_GT(forward_kinematics(arm, abb_deg({0, 30, 0, 0, 0, 0})).translation().x(), 533.0);
+  EXPECT_LT(forward_kinematics(arm, abb_deg({0, 0, 30, 0, 0, 0})).translation().z(), 889.0);
   // UR10e at all joints 0: stretched out along -x (a2 + a3), d4 along -y, d5 down... as UR's
   // published zero posture: flange at (-1184.25, -290.7, 60.85) mm.
   const MachineProfile u = load_profile("ur10e-wasp-cylinder");
@@ -103,7 +113,8 @@ const std::regex& rapid_string_re() {
 TEST(RapidStringLiteral, EscapesQuotesBackslashesAndEveryOtherByte) {
   EXPECT_EQ(rapid_string_literal("a\"b\\c"), "\"a\"\"b\\\\c\"");
   EXPECT_EQ(rapid_string_literal("a\nb\xe2\x80\xa8"), "\"a\\0Ab\\E2\\80\\A8\"");
-  for (const std::string s : {"x\";ENDMODULE", "\\", "\r\n", std::string(300, '"')}) {
+  for (const std::string& s :
+       std::vector<std::string>{"x\";ENDMODULE", "\\", "\r\n", std::string(300, '"')}) {
     const std::string lit = rapid_string_literal(s);
     EXPECT_TRUE(std::regex_match(lit, rapid_string_re())) << lit;
   }
@@ -157,10 +168,6 @@ bool rapid_known_line(const std::string& line) {
   for (const auto& f : kForms)
     if (std::regex_match(line, f)) return true;
   return false;
-}
-
-Eigen::Matrix3d abb_rotation(double w, double x, double y, double z) {
-  return Eigen::Quaterniond(w, x, y, z).toRotationMatrix();
 }
 
 void expect_rapid_follows_the_csv(const std::string& job_args) {
@@ -312,7 +319,10 @@ std::string abb_profile_with(const std::string& dir, const nlohmann::json& rapid
 TEST(RapidWriter, HostileNamesStayTextAndTheModuleStillParses) {
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"a\";ENDMODULE\nMODULE x\n!.csv", "cell"},
-      {"a\xe2\x80\xa8ENDPROC\xc2\x85.csv", "cell\xe2\x80\xa8ENDMODULE"},
+      {"a\xe2\x80\xa8"
+       "ENDPROC\xc2\x85.csv",
+       "cell\xe2\x80\xa8"
+       "ENDMODULE"},
       {"proc.csv", "cell ! \" \\ ENDMODULE"},
       {std::string(60, 'q') + ".csv", "cell"},
   };
