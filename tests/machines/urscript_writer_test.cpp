@@ -75,7 +75,7 @@ TEST(UrFunctionName, IsAUrScriptIdentifier) {
   EXPECT_EQ(urscript_function_name("3d"), "p3d");
   EXPECT_EQ(urscript_function_name("end"), "strand_end");
   EXPECT_EQ(urscript_function_name("movel"), "strand_movel");
-  EXPECT_EQ(urscript_function_name("a\"):\nend\xe2\x80\xa8"), "a______end___");
+  EXPECT_EQ(urscript_function_name("a\"):\nend\xe2\x80\xa8"), "a____end___");
   EXPECT_EQ(urscript_function_name(std::string(100, 'p')).size(), 63u);
 }
 
