@@ -53,6 +53,15 @@ RobotPrograms read_programs(const nlohmann::json& r) {
   p.krl_points_per_module = k.value("points_per_module", p.krl_points_per_module);
   p.sunrise_ready_signal = s.value("ready_signal", p.sunrise_ready_signal);
   p.krl_ready_input = k.value("ready_input", p.krl_ready_input);
+  const auto u = r.value("urscript", nlohmann::json::object());
+  p.ur_lap_output = u.value("lap_output", p.ur_lap_output);
+  p.ur_ready_input = u.value("ready_input", p.ur_ready_input);
+  p.ur_acceleration_mm_per_s2 = u.value("acceleration_mm_per_s2", p.ur_acceleration_mm_per_s2);
+  const auto a = r.value("rapid", nlohmann::json::object());
+  p.rapid_tool = a.value("tool", p.rapid_tool);
+  p.rapid_wobj = a.value("wobj", p.rapid_wobj);
+  p.rapid_lap_signal = a.value("lap_signal", p.rapid_lap_signal);
+  p.rapid_ready_signal = a.value("ready_signal", p.rapid_ready_signal);
   return p;
 }
 
@@ -93,13 +102,42 @@ RobotCell read_robot_cell(const nlohmann::json& j, const std::string& origin,
   c.enabled = true;
   const auto& r = j.at("robot");
   const std::string where = origin + ": robot";
+  c.arm = r.value("arm", c.arm);
+  if (c.arm == "ur10e") {
+    c.controller = RobotController::UniversalRobots;
+    c.axes = 6;
+    c.joint_limits_deg = {360, 360, 360, 360, 360, 360, 0};
+  } else if (c.arm == "irb1200-5-0.9") {
+    c.controller = RobotController::Abb;
+    c.axes = 6;
+    c.joint_limits_deg = {170, 130, 70, 270, 130, 400, 0};
+    c.joint_min_deg = std::array<double, 7>{-170, -100, -200, -270, -130, -400, 0};
+  }
+  const std::size_t axes = static_cast<std::size_t>(c.axes);
+  const std::string joint_names = axes == 7 ? "7 joints (A1..A7)" : "6 joints (J1..J6)";
   c.v_cart_mm_per_s = r.value("v_cart_mm_per_s", c.v_cart_mm_per_s);
   c.travel_speed_mm_per_s = r.value("travel_speed_mm_per_s", c.travel_speed_mm_per_s);
   c.lift_mm = r.value("lift_mm", c.lift_mm);
   if (r.contains("joint_limits_deg")) {
     const auto& l = r.at("joint_limits_deg");
-    if (l.size() != 7) problems.push_back(where + ".joint_limits_deg: must list 7 joints (A1..A7)");
-    for (std::size_t i = 0; i < 7 && i < l.size(); ++i) c.joint_limits_deg[i] = l[i].get<double>();
+    if (l.size() != axes) problems.push_back(where + ".joint_limits_deg: must list " + joint_names);
+    for (std::size_t i = 0; i < axes && i < l.size(); ++i)
+      c.joint_limits_deg[i] = l[i].get<double>();
+  }
+  if (r.contains("joint_min_deg")) {
+    const auto& l = r.at("joint_min_deg");
+    if (l.size() != axes) problems.push_back(where + ".joint_min_deg: must list " + joint_names);
+    std::array<double, 7> lo{};
+    for (std::size_t i = 0; i < axes && i < l.size(); ++i) lo[i] = l[i].get<double>();
+    c.joint_min_deg = lo;
+  }
+  for (std::size_t i = 0; i < axes; ++i) {
+    const double lo = c.joint_min_deg ? (*c.joint_min_deg)[i] : -c.joint_limits_deg[i];
+    if (!(lo < c.joint_limits_deg[i])) {
+      problems.push_back(where + ".joint_min_deg: joint " + std::to_string(i + 1) +
+                         " must be below its upper limit in joint_limits_deg");
+      break;
+    }
   }
   c.joint_margin_deg = r.value("joint_limit_margin_deg", c.joint_margin_deg);
   c.reach_mm = r.value("reach_mm", c.reach_mm);
@@ -117,10 +155,12 @@ RobotCell read_robot_cell(const nlohmann::json& j, const std::string& origin,
   c.programs = read_programs(r);
   c.motion = read_motion(r);
   if (c.motion.home_joints_deg) {
-    if (r.at("home_joints_deg").size() != 7)
-      problems.push_back(where + ".home_joints_deg: must list 7 joints (A1..A7)");
-    for (std::size_t i = 0; i < 7; ++i) {
-      if (std::abs((*c.motion.home_joints_deg)[i]) > c.joint_limits_deg[i]) {
+    if (r.at("home_joints_deg").size() != axes)
+      problems.push_back(where + ".home_joints_deg: must list " + joint_names);
+    for (std::size_t i = 0; i < axes; ++i) {
+      const double q = (*c.motion.home_joints_deg)[i];
+      const double lo = c.joint_min_deg ? (*c.joint_min_deg)[i] : -c.joint_limits_deg[i];
+      if (q > c.joint_limits_deg[i] || q < lo) {
         problems.push_back(where + ".home_joints_deg: A" + std::to_string(i + 1) +
                            " is beyond its joint limit");
         break;
@@ -143,6 +183,20 @@ RobotCell read_robot_cell(const nlohmann::json& j, const std::string& origin,
       problems.push_back(e.what());
     }
   }
+  // Pasted into the RAPID module as names of its data and signals: RAPID identifiers only.
+  for (const auto& [key, value] :
+       {std::pair{"tool", c.programs.rapid_tool}, std::pair{"wobj", c.programs.rapid_wobj},
+        std::pair{"lap_signal", c.programs.rapid_lap_signal},
+        std::pair{"ready_signal", c.programs.rapid_ready_signal}}) {
+    if (std::string(key) == "ready_signal" && value.empty()) continue;
+    try {
+      require_rapid_identifier(where + ".rapid." + key, value);
+    } catch (const InputError& e) {
+      problems.push_back(e.what());
+    }
+  }
+  if (c.programs.rapid_tool == c.programs.rapid_wobj)
+    problems.push_back(where + ".rapid.wobj: must differ from rapid.tool");
   return c;
 }
 

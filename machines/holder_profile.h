@@ -39,25 +39,43 @@ struct RobotPrograms {
   // Two-way handshake: the robot waits for the extruder's ready level before each lap.
   std::string sunrise_ready_signal;  // boolean input of the I/O group; empty = no wait
   int krl_ready_input = 0;           // $IN[n]; 0 = no wait
+  // URScript (UR e-Series): standard digital output pulsed at each lap start, input the
+  // robot waits on (-1 = no wait), Cartesian acceleration of movel.
+  int ur_lap_output = 0;
+  int ur_ready_input = -1;
+  double ur_acceleration_mm_per_s2 = 500.0;
+  // RAPID (ABB IRC5/OmniCore): names of the stationary tool, the robot-held work object and
+  // the I/O signals (digital output at each lap start; digital input waited on, empty = none).
+  std::string rapid_tool = "tNozzle";
+  std::string rapid_wobj = "wobjWorkpiece";
+  std::string rapid_lap_signal = "doLapStart";
+  std::string rapid_ready_signal;
 };
 
 // Where the robot program starts and ends, and what it carries.
 struct RobotMotionSetup {
   double approach_mm = 20.0;  // first pose approached from this far along the nozzle axis
   double retract_mm = 20.0;   // and left the same way after the last
-  std::optional<std::array<double, 7>> home_joints_deg;  // PTP here first and last
-  int ptp_velocity_percent = 10;                         // of each axis' maximum
-  double load_mass_kg = 0.0;                             // the workpiece and its adapter
-  Vec3 load_cog_mm = Vec3::Zero();                       // in the flange frame
+  std::optional<std::array<double, 7>>
+      home_joints_deg;              // PTP here first and last (A7 = 0 on 6 axes)
+  int ptp_velocity_percent = 10;    // of each axis' maximum
+  double load_mass_kg = 0.0;        // the workpiece and its adapter
+  Vec3 load_cog_mm = Vec3::Zero();  // in the flange frame
 };
+
+// Which controller's programs a cell gets beside the pose CSV.
+enum class RobotController { Kuka, UniversalRobots, Abb };
 
 struct RobotCell {
   bool enabled = false;
-  std::string arm = "lbr-iiwa-14-r820";
+  std::string arm = "lbr-iiwa-14-r820";  // or "ur10e", "irb1200-5-0.9"
+  RobotController controller = RobotController::Kuka;
+  int axes = 7;
   double v_cart_mm_per_s = 6.0;         // contact speed while depositing
   double travel_speed_mm_per_s = 20.0;  // contact speed for travels
   double lift_mm = 3.0;                 // the substrate backs off the nozzle this far for travels
-  std::array<double, 7> joint_limits_deg = {170, 120, 170, 120, 170, 120, 175};
+  std::array<double, 7> joint_limits_deg = {170, 120, 170, 120, 170, 120, 175};  // upper
+  std::optional<std::array<double, 7>> joint_min_deg;  // lower limits; unset: -joint_limits_deg
   double joint_margin_deg = 5.0;  // laps keep this far from the last joint's limit
   double reach_mm = 820.0;        // wrist centre from the shoulder
   // Calibration: the nozzle tip and the nozzle axis (direction of flow) in the robot base frame.

@@ -24,7 +24,9 @@ bool solved(const IkResult& r) {
 
 // Mid-range cost of a solution: smaller is farther from the limits.
 double limit_cost(const ArmModel& arm, const Joints& q) {
-  return q.cwiseQuotient(arm.limit_rad).squaredNorm();
+  const Joints mid = (arm.limit_rad + arm.limit_min_rad) / 2.0;
+  const Joints half = (arm.limit_rad - arm.limit_min_rad) / 2.0;
+  return (q - mid).cwiseQuotient(half).squaredNorm();
 }
 
 // The first pose has no predecessor: solve the same workpiece position turned back to turn 0
@@ -41,17 +43,18 @@ IkResult first_solution(const ArmModel& arm, const RobotCell& cell, const slicer
         r_first * Eigen::AngleAxisd(p.turn_rad - turn, Vec3::UnitZ()).toRotationMatrix();
     return flange_pose(cell, p.workpiece_origin_mm, quaternion_wxyz(r));
   };
-  for (double a2 : {30.0, 60.0}) {
-    for (double a4 : {-60.0, -90.0, 60.0, 90.0}) {
-      for (double a6 : {-60.0, 60.0}) {
-        Joints seed = Joints::Zero();
-        seed[1] = slicer::deg_to_rad(a2);
-        seed[3] = slicer::deg_to_rad(a4);
-        seed[5] = slicer::deg_to_rad(a6);
-        const IkResult r = solve_ik(arm, turned(0.0), seed, 400);
-        const double cost = limit_cost(arm, r.q);
-        if (solved(r) && (!found || cost < best_cost)) best = r, best_cost = cost, found = true;
-      }
+  for (const Joints& seed : arm.seeds) {
+    const IkResult r = solve_ik(arm, turned(0.0), seed, 400);
+    const double cost = limit_cost(arm, r.q);
+    if (solved(r) && within_limits(arm, r.q) && (!found || cost < best_cost))
+      best = r, best_cost = cost, found = true;
+  }
+  if (!found) {
+    // No posture within the limits: the best outside them (reported as such).
+    for (const Joints& seed : arm.seeds) {
+      const IkResult r = solve_ik(arm, turned(0.0), seed, 400);
+      const double cost = limit_cost(arm, r.q);
+      if (solved(r) && (!found || cost < best_cost)) best = r, best_cost = cost, found = true;
     }
   }
   if (!found) return best;
@@ -61,13 +64,17 @@ IkResult first_solution(const ArmModel& arm, const RobotCell& cell, const slicer
 }
 
 std::string limit_text(const ArmModel& arm, const Joints& q, int i) {
+  const std::string range = arm.limit_min_rad[i] == -arm.limit_rad[i]
+                                ? "+-" + fmt_fixed(slicer::rad_to_deg(arm.limit_rad[i]), 0)
+                                : fmt_fixed(slicer::rad_to_deg(arm.limit_min_rad[i]), 0) + ".." +
+                                      fmt_fixed(slicer::rad_to_deg(arm.limit_rad[i]), 0);
   return "A" + std::to_string(i + 1) + " = " + fmt_fixed(slicer::rad_to_deg(q[i]), 1) +
-         " deg, limit +-" + fmt_fixed(slicer::rad_to_deg(arm.limit_rad[i]), 0) + " deg";
+         " deg, limit " + range + " deg";
 }
 
 void record_limits(const ArmModel& arm, const Joints& q, std::size_t index, JointReport& out) {
-  for (int i = 0; i < 7; ++i) {
-    if (std::abs(q[i]) > arm.limit_rad[i] + 1e-9) {
+  for (int i = 0; i < arm.axes; ++i) {
+    if (q[i] > arm.limit_rad[i] + 1e-9 || q[i] < arm.limit_min_rad[i] - 1e-9) {
       if (out.outside_limits++ == 0) {
         out.first_outside = index;
         out.first_outside_what = limit_text(arm, q, i);
@@ -92,6 +99,7 @@ JointReport analyse_joints(const ArmModel& arm, const RobotCell& cell,
                            std::size_t max_problems) {
   JointReport out;
   out.poses = points.size();
+  out.axes = arm.axes;
   std::optional<Joints> seed;
   bool first_range = true;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -130,7 +138,7 @@ JointReport analyse_joints(const ArmModel& arm, const RobotCell& cell,
 }
 
 Joints start_joints(const RobotCell& cell, const slicer::PosePoint& first) {
-  const JointReport j = analyse_joints(lbr_iiwa_14_r820(cell), cell, {first}, true);
+  const JointReport j = analyse_joints(arm_model(cell), cell, {first}, true);
   return j.ok() && !j.solutions.empty() ? j.solutions.front() : Joints::Zero();
 }
 

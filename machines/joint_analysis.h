@@ -14,6 +14,7 @@ namespace strand::machines {
 
 struct JointReport {
   std::size_t poses = 0;
+  int axes = 7;                     // the arm's joints (the rest of min/max stay 0)
   Joints min_rad = Joints::Zero();  // over the solved poses
   Joints max_rad = Joints::Zero();
   double max_reach_mm = 0.0;       // farthest wrist centre from the shoulder

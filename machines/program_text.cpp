@@ -147,6 +147,152 @@ void require_java_identifier(const std::string& key, const std::string& value) {
   }
 }
 
+namespace {
+
+std::string upper_case(std::string_view s) {
+  std::string out(s);
+  for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return out;
+}
+
+constexpr std::size_t kMaxRapidName = 32;
+constexpr std::size_t kMaxRapidString = 80;
+constexpr std::size_t kMaxUrName = 63;
+
+bool is_rapid_reserved(std::string_view name) {
+  // RAPID reserved words, and the names the module itself uses for its data.
+  static const std::string_view kReserved[] = {
+      "ALIAS",     "AND",     "BACKWARD",  "CASE",    "CONNECT",  "CONST",    "DEFAULT",
+      "DIV",       "DO",      "ELSE",      "ELSEIF",  "ENDFOR",   "ENDFUNC",  "ENDIF",
+      "ENDMODULE", "ENDPROC", "ENDRECORD", "ENDTEST", "ENDTRAP",  "ENDWHILE", "ERROR",
+      "EXIT",      "FALSE",   "FOR",       "FROM",    "FUNC",     "GOTO",     "IF",
+      "INOUT",     "LOCAL",   "MOD",       "MODULE",  "NOSTEPIN", "NOT",      "NOVIEW",
+      "OR",        "PERS",    "PROC",      "RAISE",   "READONLY", "RECORD",   "RETRY",
+      "RETURN",    "STEP",    "SYSMODULE", "TEST",    "THEN",     "TO",       "TRAP",
+      "TRUE",      "TRYNEXT", "UNDO",      "VAR",     "VIEWONLY", "WHILE",    "WITH",
+      "XOR",       "MAIN",    "TOOL0",     "WOBJ0",   "LOAD0",    "FINE",     "STRANDZONE"};
+  const std::string upper = upper_case(name);
+  if (upper.rfind("STRANDV", 0) == 0 || upper.rfind("STRANDLAP", 0) == 0) return true;
+  return std::find(std::begin(kReserved), std::end(kReserved), std::string_view(upper)) !=
+         std::end(kReserved);
+}
+
+}  // namespace
+
+bool is_rapid_identifier(std::string_view name) {
+  if (!is_plain_identifier(name, kMaxRapidName) || name[0] == '_') return false;
+  return !is_rapid_reserved(name);
+}
+
+void require_rapid_identifier(const std::string& key, const std::string& value) {
+  if (!is_rapid_identifier(value)) {
+    throw InputError(key + " = \"" + shown(value) +
+                     "\": must be a RAPID identifier (a letter, then letters, digits and _, at "
+                     "most 32 characters, not a RAPID reserved word)");
+  }
+}
+
+std::string rapid_module_name(const std::string& base) {
+  std::string out;
+  for (char c : base.substr(0, 4 * kMaxRapidName)) {
+    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+    out += ok ? c : '_';
+  }
+  if (out.empty() || !std::isalpha(static_cast<unsigned char>(out[0]))) out = "M" + out;
+  out = out.substr(0, kMaxRapidName);
+  if (!is_rapid_identifier(out)) out = ("M_" + out).substr(0, kMaxRapidName);
+  return out;
+}
+
+std::string rapid_string_literal(std::string_view text) {
+  static const char* const kHex = "0123456789ABCDEF";
+  std::string out = "\"";
+  std::size_t shown_chars = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (shown_chars == kMaxRapidString - 3) {
+      out += "...";
+      break;
+    }
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    if (c == '"') {
+      out += "\"\"";
+    } else if (c == '\\') {
+      out += "\\\\";
+    } else if (printable_ascii(c)) {
+      out += static_cast<char>(c);
+    } else {
+      out += '\\';
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+    ++shown_chars;
+  }
+  return out + "\"";
+}
+
+bool is_urscript_keyword(std::string_view name) {
+  static const std::string_view kKeywords[] = {"and",
+                                               "or",
+                                               "xor",
+                                               "not",
+                                               "def",
+                                               "end",
+                                               "if",
+                                               "elif",
+                                               "else",
+                                               "while",
+                                               "for",
+                                               "return",
+                                               "thread",
+                                               "run",
+                                               "join",
+                                               "kill",
+                                               "halt",
+                                               "True",
+                                               "False",
+                                               "global",
+                                               "local",
+                                               "break",
+                                               "continue",
+                                               "sec",
+                                               "pass",
+                                               "enter_critical",
+                                               "exit_critical",
+                                               "movel",
+                                               "movej",
+                                               "set_tcp",
+                                               "set_payload",
+                                               "textmsg",
+                                               "sync",
+                                               "sleep",
+                                               "p",
+                                               "set_standard_digital_out",
+                                               "get_standard_digital_in",
+                                               "strand_wait_ready"};
+  return std::find(std::begin(kKeywords), std::end(kKeywords), name) != std::end(kKeywords);
+}
+
+std::string urscript_function_name(const std::string& base) {
+  std::string out;
+  for (char c : base.substr(0, 4 * kMaxUrName)) {
+    const bool ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+    out += ok ? c : '_';
+  }
+  if (out.empty() || std::isdigit(static_cast<unsigned char>(out[0]))) out = "p" + out;
+  out = out.substr(0, kMaxUrName);
+  if (is_urscript_keyword(out)) out = ("strand_" + out).substr(0, kMaxUrName);
+  return out;
+}
+
+std::string urscript_string_literal(std::string_view text) {
+  std::string out = "\"";
+  for (char c : text.substr(0, 200)) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    out += printable_ascii(u) && c != '"' && c != '\\' ? c : '?';
+  }
+  return out + "\"";
+}
+
 bool is_krl_keyword(std::string_view name) {
   static const std::string_view kKeywords[] = {
       "AND",    "ANIN",   "ANOUT",    "B_AND",     "B_EXOR",   "B_NOT",     "B_OR",      "BOOL",

@@ -33,6 +33,27 @@ bool is_plain_identifier(std::string_view text, std::size_t max_length);
 // identifier of at most 64 characters that is not a Java keyword or literal.
 void require_java_identifier(const std::string& key, const std::string& value);
 
+// RAPID (ABB): an identifier starts with a letter, then letters, digits and _, at most 32
+// characters, and is not a RAPID reserved word (compared without case). Throws InputError
+// naming `key` otherwise.
+bool is_rapid_identifier(std::string_view name);
+void require_rapid_identifier(const std::string& key, const std::string& value);
+// A RAPID module name for an output base name: invalid characters become _, an `M` is put
+// before a leading digit or _, a reserved word gets `M_` before it, cut to 32 characters.
+std::string rapid_module_name(const std::string& base_name);
+// A RAPID string literal (with its quotes): printable ASCII as is with `"` and `\` doubled,
+// every other byte as a `\hh` escape; at most 80 characters of the value (longer text is cut
+// and ends in "...").
+std::string rapid_string_literal(std::string_view text);
+
+// URScript: a function name for an output base name ([A-Za-z_][A-Za-z0-9_]*, at most 63
+// characters, not a URScript keyword or a built-in function the program calls).
+std::string urscript_function_name(const std::string& base_name);
+bool is_urscript_keyword(std::string_view name);
+// A URScript string literal (with its quotes): printable ASCII only, `"`, `\` and anything
+// else (line terminators included) become `?` (URScript has no escapes to rely on).
+std::string urscript_string_literal(std::string_view text);
+
 // KRL keywords and the names KSS reserves for its own programs, upper case; a module or
 // sub-program name must not be one of them.
 bool is_krl_keyword(std::string_view name);

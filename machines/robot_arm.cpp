@@ -26,7 +26,7 @@ constexpr double kDampingMm = 1.0;
 constexpr double kMaxStepRad = 0.3;
 // Joint scale of the least-squares step: the last joint (the workpiece's own axis, clamped
 // coaxially) is the cheap way to turn the workpiece, so it takes turns before the arm does.
-constexpr double kJointScale[7] = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 10.0};
+constexpr double kLastJointScale = 10.0;
 // Null-space pull toward mid-range (a gradient step on sum (q / limit)^2), per iteration,
 // while the flange is still farther than kNullSpaceMm from the target (mm, orientation at the
 // lever arm): the last steps are plain least squares, which converge.
@@ -49,32 +49,109 @@ Vec3 rotation_error(const Eigen::Matrix3d& to, const Eigen::Matrix3d& from) {
 
 }  // namespace
 
+namespace {
+
+// Joint limits of the cell (upper; lower from joint_min_deg when the profile gives it).
+void set_limits(ArmModel& m, const RobotCell& cell) {
+  for (int i = 0; i < m.axes; ++i) {
+    m.limit_rad[i] = slicer::deg_to_rad(cell.joint_limits_deg[static_cast<std::size_t>(i)]);
+    m.limit_min_rad[i] =
+        cell.joint_min_deg ? slicer::deg_to_rad((*cell.joint_min_deg)[static_cast<std::size_t>(i)])
+                           : -m.limit_rad[i];
+  }
+  // Unused joints: held at 0, a range that keeps the mid-range pull at 0.
+  for (int i = m.axes; i < 7; ++i) m.limit_rad[i] = 1.0, m.limit_min_rad[i] = -1.0;
+}
+
+Joints joints_deg(std::initializer_list<double> deg) {
+  Joints q = Joints::Zero();
+  int i = 0;
+  for (double d : deg) q[i++] = slicer::deg_to_rad(d);
+  return q;
+}
+
+}  // namespace
+
 ArmModel lbr_iiwa_14_r820(const RobotCell& cell) {
   const double h = slicer::kPi / 2.0;
   ArmModel m;
   m.name = "KUKA LBR iiwa 14 R820";
   m.dh = {DhRow{0, -h, 360.0}, DhRow{0, h, 0.0}, DhRow{0, h, 420.0},  DhRow{0, -h, 0.0},
           DhRow{0, -h, 400.0}, DhRow{0, h, 0.0}, DhRow{0, 0.0, 126.0}};
-  for (int i = 0; i < 7; ++i) m.limit_rad[i] = slicer::deg_to_rad(cell.joint_limits_deg[i]);
+  set_limits(m, cell);
   m.shoulder_mm = Vec3(0.0, 0.0, 360.0);
   m.reach_mm = cell.reach_mm;
   m.flange_mm = 126.0;
+  for (double a2 : {30.0, 60.0})
+    for (double a4 : {-60.0, -90.0, 60.0, 90.0})
+      for (double a6 : {-60.0, 60.0}) m.seeds.push_back(joints_deg({0, a2, 0, a4, 0, a6, 0}));
   return m;
+}
+
+ArmModel ur10e(const RobotCell& cell) {
+  const double h = slicer::kPi / 2.0;
+  ArmModel m;
+  m.name = "Universal Robots UR10e";
+  m.axes = 6;
+  m.dh = {DhRow{0, h, 180.7},   DhRow{-612.7, 0, 0.0}, DhRow{-571.55, 0, 0.0}, DhRow{0, h, 174.15},
+          DhRow{0, -h, 119.85}, DhRow{0, 0, 116.55},   DhRow{0, 0, 0}};
+  set_limits(m, cell);
+  m.shoulder_mm = Vec3(0.0, 0.0, 180.7);
+  m.reach_mm = cell.reach_mm;
+  m.flange_mm = 116.55;
+  for (double base : {0.0, 180.0})
+    for (double elbow : {90.0, -90.0})
+      for (double wrist2 : {90.0, -90.0})
+        m.seeds.push_back(
+            joints_deg({base, -90.0 - elbow / 2, elbow, -90.0 - elbow / 2, wrist2, 0}));
+  return m;
+}
+
+ArmModel irb1200_5_09(const RobotCell& cell) {
+  const double h = slicer::kPi / 2.0;
+  ArmModel m;
+  m.name = "ABB IRB 1200-5/0.9";
+  m.axes = 6;
+  m.dh = {DhRow{0, -h, 399.0}, DhRow{448.0, 0, 0.0}, DhRow{42.0, -h, 0.0}, DhRow{0, h, 451.0},
+          DhRow{0, -h, 0.0},   DhRow{0, 0, 82.0},    DhRow{0, 0, 0}};
+  m.offset_rad[1] = -h;
+  m.offset_rad[5] = slicer::kPi;
+  set_limits(m, cell);
+  m.shoulder_mm = Vec3(0.0, 0.0, 399.0);
+  m.reach_mm = cell.reach_mm;
+  m.flange_mm = 82.0;
+  for (double a2 : {0.0, 30.0})
+    for (double a3 : {0.0, -30.0})
+      for (double a5 : {45.0, -45.0}) m.seeds.push_back(joints_deg({0, a2, a3, 0, a5, 0}));
+  return m;
+}
+
+ArmModel arm_model(const RobotCell& cell) {
+  if (cell.arm == "ur10e") return ur10e(cell);
+  if (cell.arm == "irb1200-5-0.9") return irb1200_5_09(cell);
+  return lbr_iiwa_14_r820(cell);
+}
+
+bool within_limits(const ArmModel& arm, const Joints& q, double slack) {
+  for (int i = 0; i < arm.axes; ++i)
+    if (q[i] > arm.limit_rad[i] + slack || q[i] < arm.limit_min_rad[i] - slack) return false;
+  return true;
 }
 
 Eigen::Isometry3d forward_kinematics(const ArmModel& arm, const Joints& q) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  for (int i = 0; i < 7; ++i) t = t * dh_transform(arm.dh[i], q[i]);
+  for (int i = 0; i < arm.axes; ++i) t = t * dh_transform(arm.dh[i], q[i] + arm.offset_rad[i]);
   return t;
 }
 
 Eigen::Matrix<double, 6, 7> jacobian(const ArmModel& arm, const Joints& q) {
   std::array<Eigen::Isometry3d, 8> frames;
   frames[0] = Eigen::Isometry3d::Identity();
-  for (int i = 0; i < 7; ++i) frames[i + 1] = frames[i] * dh_transform(arm.dh[i], q[i]);
-  const Vec3 end = frames[7].translation();
-  Eigen::Matrix<double, 6, 7> j;
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < arm.axes; ++i)
+    frames[i + 1] = frames[i] * dh_transform(arm.dh[i], q[i] + arm.offset_rad[i]);
+  const Vec3 end = frames[arm.axes].translation();
+  Eigen::Matrix<double, 6, 7> j = Eigen::Matrix<double, 6, 7>::Zero();
+  for (int i = 0; i < arm.axes; ++i) {
     const Vec3 z = frames[i].linear().col(2);
     j.block<3, 1>(0, i) = z.cross(end - frames[i].translation());
     j.block<3, 1>(3, i) = z;
@@ -91,7 +168,11 @@ IkResult solve_ik(const ArmModel& arm, const Eigen::Isometry3d& target, const Jo
   using Mat67 = Eigen::Matrix<double, 6, 7>;
   using Mat76 = Eigen::Matrix<double, 7, 6>;
   using Mat6 = Eigen::Matrix<double, 6, 6>;
-  const Joints scale = Eigen::Map<const Joints>(kJointScale);
+  Joints scale = Joints::Ones();
+  scale[arm.axes - 1] = kLastJointScale;
+  for (int i = arm.axes; i < 7; ++i) scale[i] = 0.0;  // unused joints stay where they are
+  const Joints mid = (arm.limit_rad + arm.limit_min_rad) / 2.0;
+  const Joints half = (arm.limit_rad - arm.limit_min_rad) / 2.0;
   IkResult r;
   r.q = seed;
   for (r.iterations = 0; r.iterations <= max_iterations; ++r.iterations) {
@@ -117,7 +198,7 @@ IkResult solve_ik(const ArmModel& arm, const Eigen::Isometry3d& target, const Jo
     if (e.norm() > kNullSpaceMm) {
       // The undamped projector keeps the mid-range pull out of the task exactly.
       const Mat76 exact = j.transpose() * jjt.completeOrthogonalDecomposition().pseudoInverse();
-      const Joints gradient = r.q.cwiseQuotient(arm.limit_rad.cwiseAbs2()).cwiseProduct(scale);
+      const Joints gradient = (r.q - mid).cwiseQuotient(half.cwiseAbs2()).cwiseProduct(scale);
       dq -= kMidRangeGain * (Eigen::Matrix<double, 7, 7>::Identity() - exact * j) * gradient;
     }
     dq = dq.cwiseProduct(scale);

@@ -332,7 +332,7 @@ PoseCheckReport check_pose_csv(std::string_view text, const std::string& file,
   }
   check_numbering(raw_rows(text), rows, r);
   check_on_cylinder(samples, slicer::kGcodeResolutionMm, r);
-  r.joints = machines::analyse_joints(machines::lbr_iiwa_14_r820(m.robot), m.robot, rows);
+  r.joints = machines::analyse_joints(machines::arm_model(m.robot), m.robot, rows);
   r.joints_checked = true;
   return r;
 }
@@ -347,7 +347,7 @@ nlohmann::json findings_json(const PoseFindings& f) {
 
 nlohmann::json joints_json(const machines::JointReport& j) {
   nlohmann::json ranges = nlohmann::json::array();
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < j.axes; ++i) {
     ranges.push_back({{"joint", "A" + std::to_string(i + 1)},
                       {"min_deg", std::round(slicer::rad_to_deg(j.min_rad[i]) * 100) / 100},
                       {"max_deg", std::round(slicer::rad_to_deg(j.max_rad[i]) * 100) / 100}});
@@ -376,7 +376,7 @@ void list_text(const char* title, const char* at, const PoseFindings& f, std::st
 
 std::string joints_text(const machines::JointReport& j) {
   std::string out = "joints (" + std::to_string(j.poses) + " poses solved along the path): ";
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < j.axes; ++i) {
     out += std::string(i ? ", " : "") + "A" + std::to_string(i + 1) + " " +
            fmt_fixed(slicer::rad_to_deg(j.min_rad[i]), 1) + ".." +
            fmt_fixed(slicer::rad_to_deg(j.max_rad[i]), 1);

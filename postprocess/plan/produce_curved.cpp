@@ -11,8 +11,11 @@
 #include "machines/kinematics.h"
 #include "machines/krl_writer.h"
 #include "machines/pose_csv.h"
+#include "machines/program_text.h"
+#include "machines/rapid_writer.h"
 #include "machines/rotary_gcode.h"
 #include "machines/sunrise_writer.h"
+#include "machines/urscript_writer.h"
 #include "postprocess/plan/cylinder_placement.h"
 #include "postprocess/plan/laps.h"
 #include "postprocess/plan/planner.h"
@@ -76,8 +79,10 @@ PosePlanOptions plan_options(const slicer::Toolpath& t, const MachineProfile& m,
 // The cylinder turns with the last joint: the whole program's turning must fit its window.
 void check_turning(const slicer::PoseProgram& p, const MachineProfile& m) {
   const auto [lo, hi] = turn_range(p);
-  const double window =
-      slicer::deg_to_rad(2.0 * (m.robot.joint_limits_deg[6] - m.robot.joint_margin_deg));
+  const std::size_t last = static_cast<std::size_t>(m.robot.axes - 1);
+  const double last_max = m.robot.joint_limits_deg[last];
+  const double last_min = m.robot.joint_min_deg ? (*m.robot.joint_min_deg)[last] : -last_max;
+  const double window = slicer::deg_to_rad(last_max - last_min - 2.0 * m.robot.joint_margin_deg);
   if (hi - lo <= window + 1e-9) return;
   std::size_t worst = 0;
   for (std::size_t k = 0; k < p.laps.size(); ++k) {
@@ -89,8 +94,9 @@ void check_turning(const slicer::PoseProgram& p, const MachineProfile& m) {
       "substrate: the pattern turns the cylinder " + deg(hi - lo) + " deg (lap " +
       std::to_string(worst) + " of layer " + std::to_string(p.laps[worst].layer) + " alone " +
       deg(p.laps[worst].turn_max_rad - p.laps[worst].turn_min_rad) +
-      " deg) and laps cannot split it further without breaking the strand; A7 allows " +
-      deg(window) + " deg (+-" + machines::fmt_fixed(m.robot.joint_limits_deg[6], 0) + " less " +
+      " deg) and laps cannot split it further without breaking the strand; A" +
+      std::to_string(last + 1) + " allows " + deg(window) + " deg (" +
+      machines::fmt_fixed(last_min, 0) + ".." + machines::fmt_fixed(last_max, 0) + " less " +
       machines::fmt_fixed(m.robot.joint_margin_deg, 0) +
       " deg margin): use --wrap patch with a narrower pattern, a larger radius, or a rotary-axis "
       "machine");
@@ -99,7 +105,7 @@ void check_turning(const slicer::PoseProgram& p, const MachineProfile& m) {
 nlohmann::json joints_json(const machines::JointReport& j, const machines::ArmModel& arm) {
   nlohmann::json joints = nlohmann::json::array();
   std::string text;
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < j.axes; ++i) {
     const double lo = slicer::rad_to_deg(j.min_rad[i]), hi = slicer::rad_to_deg(j.max_rad[i]);
     joints.push_back({{"joint", "A" + std::to_string(i + 1)},
                       {"min_deg", std::round(lo * 100) / 100},
@@ -121,7 +127,7 @@ nlohmann::json joints_json(const machines::JointReport& j, const machines::ArmMo
 
 nlohmann::json check_robot(const slicer::PoseProgram& p, const MachineProfile& m) {
   check_turning(p, m);
-  const machines::ArmModel arm = machines::lbr_iiwa_14_r820(m.robot);
+  const machines::ArmModel arm = machines::arm_model(m.robot);
   const machines::JointReport j = machines::analyse_joints(arm, m.robot, p.points, false, 1);
   if (j.first_unreachable) {
     throw InputError("substrate: pose " + std::to_string(*j.first_unreachable) +
@@ -172,15 +178,23 @@ std::vector<std::string> curved_output_paths(const MachineProfile& m, const std:
     return {output};
   }
   if (p.extension() != ".csv") {
-    throw InputError(
-        "output = " + output + ": " + m.name +
-        " writes a pose CSV (and .java, .src, .dat, .extruder.gcode beside it): give a .csv name");
+    const char* beside =
+        m.robot.controller == machines::RobotController::UniversalRobots ? ".script"
+        : m.robot.controller == machines::RobotController::Abb           ? ".mod"
+                                                                         : ".java, .src, .dat";
+    throw InputError("output = " + output + ": " + m.name + " writes a pose CSV (and " + beside +
+                     ", .extruder.gcode beside it): give a .csv name");
   }
   // Sunrise and KSS load a program only from the file named after its class or module:
   // those two are named after the sanitised stem, the CSV and the extruder's G-code keep it.
   const std::string base = output.substr(0, output.size() - 4);
   const std::string stem = p.stem().string();
   const std::filesystem::path dir = p.parent_path();
+  if (m.robot.controller == machines::RobotController::UniversalRobots)
+    return {output, base + ".script", base + ".extruder.gcode"};
+  if (m.robot.controller == machines::RobotController::Abb)
+    return {output, (dir / (machines::rapid_module_name(stem) + ".mod")).string(),
+            base + ".extruder.gcode"};
   const std::string module = machines::krl_module_name(stem);
   return {output, (dir / (machines::java_class_name(stem) + ".java")).string(),
           (dir / (module + ".src")).string(), (dir / (module + ".dat")).string(),
@@ -215,26 +229,14 @@ std::vector<std::string> header_lines(const slicer::Toolpath& t, const slicer::S
 // The extruder's volume may differ from the beads' by this fraction before a warning.
 constexpr double kVolumeBalanceTolerance = 0.10;
 
-// Robot cell: pose CSV, Sunrise Java, KRL .src/.dat and the extruder's G-code.
-void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachineProfile& m,
-                 const std::vector<std::string>& paths, const std::vector<std::string>& header,
-                 double tol) {
+// KUKA: Sunrise Java and KRL .src/.dat beside the CSV.
+void write_kuka(CurvedProduced& out, const MachineProfile& m, const std::vector<std::string>& paths,
+                const std::vector<std::string>& header, double tol, const std::string& csv,
+                const std::string& ext) {
   const std::string base = std::filesystem::path(paths[0]).stem().string();
-  const std::string csv = machines::write_pose_csv(out.program);
   const std::string java = machines::write_sunrise_java(
       out.program, m, base, std::filesystem::path(paths[0]).filename().string(), header);
   const machines::KrlProgram krl = machines::write_krl(out.program, m, base, header, tol);
-  machines::ExtruderGcodeInfo xi{header, bead_areas_mm2(t)};
-  const std::string ext = machines::write_extruder_gcode(out.program, m, xi);
-  double e_total = 0.0;
-  for (std::size_t i = 1; i < out.program.points.size(); ++i) {
-    const auto& a = out.program.points[i - 1];
-    const auto& b = out.program.points[i];
-    const double area = xi.bead_area_mm2[static_cast<std::size_t>(b.layer)];
-    if (b.extrude)
-      e_total +=
-          (b.contact_mm - a.contact_mm).norm() * machines::e_per_mm(m, b.speed_mm_per_s, area);
-  }
   out.files = {
       {paths[0], csv}, {paths[1], java}, {paths[2], krl.src}, {paths[3], krl.dat}, {paths[4], ext}};
   const auto lines = [](const std::string& s) { return std::count(s.begin(), s.end(), '\n'); };
@@ -254,6 +256,67 @@ void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachinePr
                                          std::to_string(krl.sub_programs) + " sub-programs / " +
                                          std::to_string(krl.lin_points) + " LIN, extruder " +
                                          std::to_string(lines(ext)) + " lines"}};
+}
+
+// Robot cell: pose CSV, the controller's programs and the extruder's G-code.
+void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachineProfile& m,
+                 const std::vector<std::string>& paths, const std::vector<std::string>& header,
+                 double tol) {
+  const std::string base = std::filesystem::path(paths[0]).stem().string();
+  const std::string csv_name = std::filesystem::path(paths[0]).filename().string();
+  const std::string csv = machines::write_pose_csv(out.program);
+  machines::ExtruderGcodeInfo xi{header, bead_areas_mm2(t)};
+  const std::string ext = machines::write_extruder_gcode(out.program, m, xi);
+  const auto lines = [](const std::string& s) { return std::count(s.begin(), s.end(), '\n'); };
+  double e_total = 0.0;
+  for (std::size_t i = 1; i < out.program.points.size(); ++i) {
+    const auto& a = out.program.points[i - 1];
+    const auto& b = out.program.points[i];
+    const double area = xi.bead_area_mm2[static_cast<std::size_t>(b.layer)];
+    if (b.extrude)
+      e_total +=
+          (b.contact_mm - a.contact_mm).norm() * machines::e_per_mm(m, b.speed_mm_per_s, area);
+  }
+  const auto controller = m.robot.controller;
+  if (controller == machines::RobotController::UniversalRobots) {
+    const std::string script = machines::write_urscript(
+        out.program, m, machines::urscript_function_name(base), csv_name, header, tol);
+    out.files = {{paths[0], csv}, {paths[1], script}, {paths[2], ext}};
+    out.report["outputs"] = {{"main", paths[0]},
+                             {"csv", paths[0]},
+                             {"urscript", paths[1]},
+                             {"extruder_gcode", paths[2]}};
+    out.report["programs"] = {
+        {"csv_rows", out.program.points.size()},
+        {"csv_bytes", csv.size()},
+        {"urscript_bytes", script.size()},
+        {"extruder_lines", lines(ext)},
+        {"extruder_bytes", ext.size()},
+        {"text", std::to_string(out.program.points.size()) + " CSV rows, URScript " +
+                     std::to_string(lines(script)) + " lines, extruder " +
+                     std::to_string(lines(ext)) + " lines"}};
+  } else if (controller == machines::RobotController::Abb) {
+    const std::string module = std::filesystem::path(paths[1]).stem().string();
+    const machines::RapidProgram rapid =
+        machines::write_rapid(out.program, m, module, csv_name, header, tol);
+    out.files = {{paths[0], csv}, {paths[1], rapid.mod}, {paths[2], ext}};
+    out.report["outputs"] = {
+        {"main", paths[0]}, {"csv", paths[0]}, {"rapid", paths[1]}, {"extruder_gcode", paths[2]}};
+    out.report["programs"] = {
+        {"csv_rows", out.program.points.size()},
+        {"csv_bytes", csv.size()},
+        {"rapid_bytes", rapid.mod.size()},
+        {"rapid_procedures", rapid.procedures},
+        {"rapid_move_l", rapid.move_l},
+        {"extruder_lines", lines(ext)},
+        {"extruder_bytes", ext.size()},
+        {"text", std::to_string(out.program.points.size()) + " CSV rows, RAPID " +
+                     std::to_string(rapid.procedures) + " procedures / " +
+                     std::to_string(rapid.move_l) + " MoveL, extruder " +
+                     std::to_string(lines(ext)) + " lines"}};
+  } else {
+    write_kuka(out, m, paths, header, tol, csv, ext);
+  }
   const double ink_ml = slicer::mm3_to_ml(e_total * m.deposition.mm3_per_e);
   const double bead_ml = out.report["totals"]["bead_volume_ml"].get<double>();
   const double ratio = bead_ml > 0.0 ? ink_ml / bead_ml : 1.0;

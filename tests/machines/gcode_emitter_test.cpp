@@ -30,7 +30,7 @@ slicer::MotionProgram two_moves() {
 
 MachineProfile e_machine(bool relative) {
   MachineProfile m;
-  m.name = "t";
+  m.name.assign(1, 't');  // not = "t": GCC 12 -Wstringop-overflow false positive once inlined
   m.deposition.model = DepositionModel::EVolumetric;
   m.deposition.mm3_per_e = 2.0;
   m.deposition.relative_e = relative;
