@@ -56,7 +56,8 @@ nlohmann::json report_json(const PlotRequest& r, const machines::MachineProfile&
 }
 
 std::vector<std::string> header_lines(const PlotRequest& r, const machines::MachineProfile& m,
-                                      const post::PenEstimate& e, const Ordering& o, double scale) {
+                                      const post::PenEstimate& e, const Ordering& o, double scale,
+                                      const std::vector<std::string>& colours) {
   std::vector<std::string> header = {
       "Strand plot (drawing to pen G-code)", "input: " + r.input,
       "machine: " + m.name + ", kinematics " + machines::to_string(m.plotter.setup.kind) + ", firmware " + machines::to_string(m.firmware),
@@ -69,6 +70,9 @@ std::vector<std::string> header_lines(const PlotRequest& r, const machines::Mach
   for (const auto& [key, value] : r.notes) header.push_back(key + ": " + value);
   for (const auto& s : r.drawing.skipped) header.push_back("skipped: " + s);
   for (const auto& w : e.warnings) header.push_back("warning: " + w);
+  for (std::size_t k = 0; k < colours.size(); ++k) {  // read back by previews
+    if (!colours[k].empty()) header.push_back("pen " + std::to_string(k + 1) + " colour: " + colours[k]);
+  }
   header.push_back("");
   return header;
 }
@@ -111,7 +115,8 @@ PlotResult plot_drawing(PlotRequest r, const machines::MachineProfile& m) {
 
   const Ordering ord{strokes_in, strokes.size(), before, after};
   out.report = report_json(r, m, e, ord);
-  const std::vector<std::string> header = header_lines(r, m, e, ord, out.toolpath.derived["scale"].get<double>());
+  const std::vector<std::string> header = header_lines(r, m, e, ord, out.toolpath.derived["scale"].get<double>(),
+                   out.toolpath.derived["pen_colours"].get<std::vector<std::string>>());
   out.gcode = machines::emit_pen_gcode(program, m, header);
 
   std::ostringstream sum;

@@ -78,10 +78,15 @@ int run(const PreviewArgs& a) {
   const bool curved = a.input.ends_with(".csv") || post::is_rotary_gcode(gcode);
   if (curved && a.marks)
     throw InputError("marks: only for flat G-code (a curved file is checked with strand check)");
-  const post::ParsedGcode parsed = curved ? post::ParsedGcode{} : post::parse_gcode(gcode);
+  post::ParsedGcode parsed;
+  try {  // errors name the file as strand check names it
+    if (!curved) parsed = post::parse_gcode(gcode);
+  } catch (const InputError& e) {
+    throw InputError("input = " + a.input + ": " + e.what());
+  }
   const post::PreviewScene scene =
       curved ? curved_scene(post::read_curved_part(gcode, a.input), a.arc_tolerance_mm)
-             : post::preview_scene(parsed.program, a.arc_tolerance_mm);
+             : post::preview_scene(parsed.program, a.arc_tolerance_mm, parsed.pen_colours);
   if (scene.paths.empty()) throw InputError("input = " + a.input + ": no moves to draw (is it G-code?)");
   post::ImageOptions o = image_options(a);
   if (a.marks) {

@@ -23,7 +23,7 @@ const slicer::ParamTable& text_table() {
   static const slicer::ParamTable kTable{
       "text",
       {
-          {"size", ParamType::Number, "mm", "font size (the em; capitals of the Hershey simplex fonts are 0.66 of it)", 0.0, true, 1000.0, false, 5.0},
+          {"size", ParamType::Number, "mm", "font size (the em; capitals of the Hershey simplex fonts are 0.66 of it; at least 0.1 mm: smaller letters collapse at the output's 0.001 mm steps)", 0.1, false, 1000.0, false, 5.0},
           {"font", ParamType::Text, "", "hershey:NAME (single stroke: futural, rowmans, scripts, timesr, ...) or an installed font family (outline, filled)", std::nullopt, false, std::nullopt, false, "hershey:futural"},
           {"anchor", ParamType::Text, "", "which end of each line sits at the origin", std::nullopt, false, std::nullopt, false, "start", "", {"start", "middle", "end"}},
           {"line-spacing", ParamType::Number, "", "distance between lines (\\n in STRING) in font sizes", 0.5, false, 10.0, false, 1.25},
@@ -32,6 +32,10 @@ const slicer::ParamTable& text_table() {
       }};
   return kTable;
 }
+
+// Characters of the string (a label or a few lines: this is 10 pages); a drawing's <text>
+// may hold up to slicer::kMaxSvgTextChars.
+constexpr std::size_t kMaxTextChars = 20'000;
 
 struct TextArgs {
   std::string text, output, report, machine = "xy-plotter-servo";
@@ -54,9 +58,9 @@ slicer::SvgText text_element(const std::string& text, const nlohmann::json& v) {
   std::string s = text;
   for (std::size_t at = s.find("\\n"); at != std::string::npos; at = s.find("\\n", at + 1)) s.replace(at, 2, "\n");
   const std::u32string chars = slicer::utf8_to_u32(s);
-  if (chars.size() > slicer::kMaxSvgTextChars) {
+  if (chars.size() > kMaxTextChars) {
     throw InputError("text: the string has " + std::to_string(chars.size()) +
-                     " characters (at most " + std::to_string(slicer::kMaxSvgTextChars) + ")");
+                     " characters (at most " + std::to_string(kMaxTextChars) + ")");
   }
   bool line_start = true;
   int line = 0;

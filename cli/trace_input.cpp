@@ -42,8 +42,10 @@ const slicer::ParamTable& trace_table() {
            false, 1.0},
           {"opttolerance", ParamType::Number, "px",
            "curve joining tolerance, 0 keeps every potrace segment", 0.0, false, 10.0, false, 0.2},
-          {"pixel-size", ParamType::Number, "mm", "size of one image pixel in the drawing", 0.0,
-           true, 100.0, false, 0.25},
+          {"pixel-size", ParamType::Number, "mm",
+           "size of one image pixel in the drawing (at least 10 steps of the output's 0.001 mm, "
+           "so curves inside a pixel survive rounding)",
+           0.01, false, 100.0, false, 0.25},
       }};
   return kTable;
 }

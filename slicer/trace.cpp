@@ -84,6 +84,25 @@ std::vector<SubPath> trace_bitmap(const GreyImage& img, double threshold, const 
   return out;
 }
 
+// Pixel edges between ink (grey below `threshold`, 0..1) and paper, the image's border
+// counting as paper: the length of the outlines potrace would follow.
+long outline_edges(const GreyImage& img, double threshold) {
+  const double t = threshold * 255.0;
+  long edges = 0;
+  for (int y = 0; y < img.height; ++y) {
+    bool left = false;
+    for (int x = 0; x < img.width; ++x) {
+      const bool ink = img.at(x, y) < t;
+      const bool up = y > 0 && img.at(x, y - 1) < t;
+      edges += (ink != left) + (ink != up);
+      left = ink;
+    }
+    edges += left;  // the right border
+  }
+  for (int x = 0; x < img.width; ++x) edges += img.height > 0 && img.at(x, img.height - 1) < t;
+  return edges;
+}
+
 // A float copy of the image for filtering (0..255).
 using Plane = std::vector<float>;
 
@@ -230,17 +249,30 @@ Trace trace_image(const GreyImage& image, const TraceOptions& o) {
     const double radius = o.highpass_px > 0.0
                               ? o.highpass_px * o.upscale
                               : std::max(8.0, std::min(img.width, img.height) / 16.0);
-    TraceLevel level;
-    level.threshold = 0.5;  // of the adaptive bitmap: ink 0, paper 255
-    level.paths = trace_bitmap(adaptive_bitmap(img, radius), 0.5, scaled);
-    out.levels.push_back(std::move(level));
-    return out;
+    img = adaptive_bitmap(img, radius);
   }
-  const double top = o.threshold ? *o.threshold : o.highpass_px > 0.0 ? 0.45 : otsu_threshold(img);
-  for (int k = 1; k <= o.levels; ++k) {
+  const double top = o.adaptive            ? 0.5  // of the adaptive bitmap: ink 0, paper 255
+                     : o.threshold         ? *o.threshold
+                     : o.highpass_px > 0.0 ? 0.45
+                                           : otsu_threshold(img);
+  const int levels = o.adaptive ? 1 : o.levels;
+  std::vector<double> thresholds;
+  long edges = 0;  // bounded before any tracing
+  for (int k = 1; k <= levels; ++k) {
+    thresholds.push_back(top * (levels + 1 - k) / levels);
+    edges += outline_edges(img, thresholds.back());
+  }
+  if (edges > kMaxTraceEdges) {
+    throw InputError(
+        "trace: the " + std::to_string(img.width) + " x " + std::to_string(img.height) +
+        " px bitmap" + (levels > 1 ? "s" : "") + " would be traced along " + std::to_string(edges) +
+        " pixel edges between ink and paper (at most " + std::to_string(kMaxTraceEdges) +
+        "); use a smaller image, --blur, fewer --levels or a lower --upscale");
+  }
+  for (double threshold : thresholds) {
     TraceLevel level;
-    level.threshold = top * (o.levels + 1 - k) / o.levels;
-    level.paths = trace_bitmap(img, level.threshold, scaled);
+    level.threshold = threshold;
+    level.paths = trace_bitmap(img, threshold, scaled);
     out.levels.push_back(std::move(level));
   }
   return out;

@@ -14,6 +14,11 @@ namespace strand::slicer {
 // Pixels of the bitmap traced after --upscale (the image's pixels times upscale squared).
 inline constexpr long kMaxTracePixels = 64L * 1024 * 1024;
 
+// Pixel edges between ink and paper of all bitmaps traced (one per level), counted before
+// tracing: potrace's work grows faster than this length (a 1000 x 1000 checkerboard, 2
+// million edges, takes 15 s), and every edge can become an outline point to plot.
+inline constexpr long kMaxTraceEdges = 3'000'000;
+
 struct TraceOptions {
   // 0..1 grey below which a pixel is ink; none = Otsu's (0.45 after a high-pass filter, as
   // mkbitmap's default)
@@ -51,8 +56,8 @@ double otsu_threshold(const GreyImage& image);
 // are off); the grey stays on 0..255, a flat background at 128 after the high-pass filter.
 GreyImage filter_image(const GreyImage& image, const TraceOptions& o);
 
-// Throws InputError for options out of range and for an upscaled bitmap larger than
-// kMaxTracePixels.
+// Throws InputError for options out of range, for an upscaled bitmap larger than
+// kMaxTracePixels and for bitmaps whose outlines are longer than kMaxTraceEdges.
 Trace trace_image(const GreyImage& image, const TraceOptions& o);
 
 }  // namespace strand::slicer

@@ -625,7 +625,28 @@ class Reader {
       feature_ = feature_from_comment(trim(c.substr(8)), feature_);
     } else if (starts_with(c, "WIDTH:")) {
       std::from_chars(c.data() + 6, c.data() + c.size(), width_);
+    } else if (starts_with(c, "PEN:")) {  // Strand's pen G-code: pen k from here on
+      int k = 0;
+      const auto r = std::from_chars(c.data() + 4, c.data() + c.size(), k);
+      if (r.ec == std::errc() && k >= 1 && k <= kMaxPens) tool_ = static_cast<std::int16_t>(k - 1);
+    } else {
+      pen_colour(trim(c));
     }
+  }
+
+  // "pen 2 colour: #d40000", a header line of Strand's pen G-code: pen 2 draws in that colour.
+  void pen_colour(std::string_view c) {
+    if (!starts_with(c, "pen ")) return;
+    int k = 0;
+    const auto r = std::from_chars(c.data() + 4, c.data() + c.size(), k);
+    if (r.ec != std::errc() || k < 1 || k > kMaxPens) return;
+    const std::string_view rest = c.substr(static_cast<std::size_t>(r.ptr - c.data()));
+    if (!starts_with(rest, " colour: #") || rest.size() != 16) return;
+    const std::string_view hex = rest.substr(10);
+    if (hex.find_first_not_of("0123456789abcdefABCDEF") != std::string_view::npos) return;
+    auto& colours = out_.pen_colours;
+    if (colours.size() < static_cast<std::size_t>(k)) colours.resize(static_cast<std::size_t>(k));
+    colours[static_cast<std::size_t>(k - 1)] = "#" + std::string(hex);
   }
 
   void new_layer(std::optional<double> z) {
@@ -737,6 +758,7 @@ class Reader {
     mv.end_mm = target;
     mv.feed_mm_per_min = feed_;
     mv.feature = feature_;
+    mv.tool = tool_;
     mv.width_mm = width_;
     mv.kind = (has_e_ ? de > 0.0 : draws(code, target)) ? MoveKind::Deposit : MoveKind::Travel;
     if (code == 2 || code == 3) arc(mv, code, w, n);
@@ -857,6 +879,7 @@ class Reader {
   std::size_t loop_line_ = 0;  // the loop or call that repeated lines last (1-based)
   bool stopped_ = false;       // an unsupported construct: the rest is not read
   Feature feature_ = Feature::Infill;
+  std::int16_t tool_ = 0;  // pen (;PEN:k) drawing from here on, 0-based
 };
 
 }  // namespace

@@ -44,7 +44,13 @@ struct ParsedGcode {
   // Some were M300 S or M280 S: a pen servo. M3/M5 alone may drive a pen, a laser or a
   // GRBL machine's dispenser, so only a servo makes the file a drawing by default.
   bool pen_servo = false;
+  // Colours of pens 1, 2, ... ("#rrggbb", empty when not given) from Strand's pen G-code
+  // header ("; pen 2 colour: #d40000"); each move's pen is its tool, from ";PEN:k".
+  std::vector<std::string> pen_colours;
 };
+
+// Pens a file may name (;PEN:k, "pen k colour:"); higher numbers are not read.
+inline constexpr int kMaxPens = 64;
 
 // Layers come from ;LAYER:/;LAYER_CHANGE comments when present, else from z changes of
 // deposits. RS274NGC dialects (LinuxCNC, Planet CNC) are read: parameters (#1, #<name>,

@@ -311,7 +311,27 @@ slicer::Toolpath layout_plot(const slicer::SvgDrawing& d, const machines::Machin
   t.derived["drawing_width_mm"] = hi.x() - lo.x();
   t.derived["drawing_height_mm"] = hi.y() - lo.y();
   t.derived["scale"] = to_paper.linear.cwiseAbs().maxCoeff();  // times true size
+  t.derived["pen_colours"] = pen_colours(d, pens);
   return t;
+}
+
+std::vector<std::string> pen_colours(const slicer::SvgDrawing& d, const std::vector<int>& pens) {
+  const auto rgb = [](const std::string& c) {  // "#rrggbb" only (no gradients, no names)
+    return c.size() == 7 && c[0] == '#' &&
+           c.find_first_not_of("0123456789abcdef", 1) == std::string::npos;
+  };
+  std::vector<std::string> stroke, fill;
+  for (std::size_t i = 0; i < d.shapes.size() && i < pens.size(); ++i) {
+    const auto k = static_cast<std::size_t>(std::max(pens[i], 1));
+    if (stroke.size() < k) stroke.resize(k), fill.resize(k);
+    const auto& s = d.shapes[i];
+    if (s.stroked && stroke[k - 1].empty() && rgb(s.stroke_color)) stroke[k - 1] = s.stroke_color;
+    if (s.filled && fill[k - 1].empty() && rgb(s.fill_color)) fill[k - 1] = s.fill_color;
+  }
+  for (std::size_t k = 0; k < stroke.size(); ++k) {
+    if (stroke[k].empty()) stroke[k] = fill[k];
+  }
+  return stroke;
 }
 
 }  // namespace strand::post

@@ -50,8 +50,13 @@ inline constexpr double kFlattenShare = 0.5;
 std::vector<int> assign_pens(const slicer::SvgDrawing& d, const std::string& rules,
                              int machine_pens);
 
+// The colour each pen draws in ("#rrggbb"; pen 1 first, as many as the highest pen used):
+// the stroke colour of its first stroked shape, else the fill colour of its first filled
+// one, else empty (a pen no shape uses, or a colour the drawing does not give).
+std::vector<std::string> pen_colours(const slicer::SvgDrawing& d, const std::vector<int>& pens);
+
 // The placed, flattened drawing as one layer of reversible Feature::Pen strokes (tool =
-// 0-based pen). Throws InputError if nothing is drawable, a point cannot be reached (checked
+// 0-based pen), with derived["pen_colours"] as pen_colours gives. Throws InputError if nothing is drawable, a point cannot be reached (checked
 // on the outlines before any fill), the points would pass kMaxPlotPoints (checked before
 // flattening and before filling) or a fill fails (naming the shape).
 slicer::Toolpath layout_plot(const slicer::SvgDrawing& d, const machines::MachineProfile& m,

@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+
 #include <Eigen/Geometry>  // triangle normals
 
 #include "machines/gcode_format.h"
@@ -36,26 +38,15 @@ std::string number_list(const std::vector<double>& values) {
   return out + "]";
 }
 
-// Features of the deposits, in enum order: the legend and the paths' colour index.
-std::vector<slicer::Feature> features_used(const PreviewScene& s) {
-  std::vector<slicer::Feature> used;
-  for (const auto& p : s.paths) {
-    if (!p.travel && std::find(used.begin(), used.end(), p.feature) == used.end()) {
-      used.push_back(p.feature);
-    }
-  }
-  std::sort(used.begin(), used.end());
-  return used;
-}
-
 // Paths as raw JSON with coordinates to 3 decimals (G-code precision, stable bytes): x, y
 // per point in a planar scene, x, y, z in a 3D one. Layer -1 (before the first layer, a
 // purge line) stays -1 so the page can leave it out of the fit.
-std::string paths_json(const PreviewScene& s, const std::vector<slicer::Feature>& used, int dim) {
+std::string paths_json(const PreviewScene& s, const std::vector<PreviewKey>& used, int dim) {
   std::string out = "[";
   for (std::size_t i = 0; i < s.paths.size(); ++i) {
     const auto& p = s.paths[i];
-    const auto f = std::find(used.begin(), used.end(), p.feature) - used.begin();
+    const auto f =
+        p.travel ? 0 : std::find(used.begin(), used.end(), deposit_key(s, p)) - used.begin();
     out += std::string(i ? "," : "") + "{\"l\":" + std::to_string(std::max(p.layer, -1)) +
            ",\"t\":" + (p.travel ? "1" : "0") + ",\"f\":" + std::to_string(p.travel ? 0 : f) +
            ",\"p\":[";
@@ -90,7 +81,7 @@ std::string substrate_json(const slicer::TriangleMesh& m) {
 
 std::string scene_json(const PreviewScene& s) {
   const int dim = is_3d(s) ? 3 : 2;
-  const auto used = features_used(s);
+  const auto used = deposit_keys(s);  // the legend and the paths' colour index
   std::vector<double> bounds;
   for (const auto* b : {&s.min_mm, &s.max_mm}) {
     for (int c = 0; c < dim; ++c) bounds.push_back((*b)[c]);
@@ -100,9 +91,9 @@ std::string scene_json(const PreviewScene& s) {
   meta["layerValue"] = s.layer_value;
   meta["features"] = nlohmann::json::array();
   meta["colours"] = nlohmann::json::array();
-  for (const auto f : used) {
-    meta["features"].push_back(slicer::to_string(f));
-    meta["colours"].push_back(hex_colour(feature_colour(f)));
+  for (const auto& k : used) {
+    meta["features"].push_back(k.name);
+    meta["colours"].push_back(hex_colour(k.colour));
   }
   if (used.empty()) meta["colours"].push_back("#888888");
   std::string out = "{\"dim\":" + std::to_string(dim) + ",\"paths\":" + paths_json(s, used, dim) +

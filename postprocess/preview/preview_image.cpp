@@ -87,7 +87,7 @@ void set_path_style(cairo_t* cr, const PreviewPath& p, const PreviewScene& s,
   }
   set_colour(cr, o.colouring == PreviewColouring::Layer
                      ? layer_colour(p.layer, static_cast<int>(s.layer_z_mm.size()))
-                     : feature_colour(p.feature));
+                     : deposit_key(s, p).colour);
   cairo_set_line_width(cr, bead_px);
 }
 
@@ -169,13 +169,8 @@ void draw_legend(cairo_t* cr, const PreviewScene& s, const ImageOptions& o) {
       keys.push_back({"layer " + std::to_string(last), layer_colour(last, layers)});
     }
   } else {
-    std::vector<slicer::Feature> used;
-    for (const auto& p : s.paths) {
-      const bool known = std::find(used.begin(), used.end(), p.feature) != used.end();
-      if (!p.travel && visible(p, o) && !known) used.push_back(p.feature);
-    }
-    std::sort(used.begin(), used.end());
-    for (auto f : used) keys.push_back({slicer::to_string(f), feature_colour(f)});
+    for (const PreviewKey& k : deposit_keys(s, [&o](const PreviewPath& p) { return visible(p, o); }))
+      keys.push_back({k.name, k.colour});
   }
   if (o.travel) keys.push_back({"travel", {0.45, 0.45, 0.45}});
   if (!s.substrate.triangles.empty()) keys.push_back({"substrate", {0.80, 0.80, 0.83}});

@@ -16,7 +16,8 @@ using slicer::Vec3;
 namespace {
 
 bool continues(const PreviewPath& p, const slicer::Move& mv, bool travel) {
-  return p.travel == travel && p.layer == mv.layer && (travel || p.feature == mv.feature);
+  return p.travel == travel && p.layer == mv.layer &&
+         (travel || (p.feature == mv.feature && p.tool == mv.tool));
 }
 
 void append_move(PreviewPath& path, const Vec3& from, const slicer::Move& mv, double tol) {
@@ -53,8 +54,10 @@ void compute_bounds(PreviewScene& s) {
 
 }  // namespace
 
-PreviewScene preview_scene(const slicer::MotionProgram& program, double arc_tolerance_mm) {
+PreviewScene preview_scene(const slicer::MotionProgram& program, double arc_tolerance_mm,
+                           std::vector<std::string> pen_colours) {
   PreviewScene s;
+  s.pen_colours = std::move(pen_colours);
   for (const auto& l : program.layers) s.layer_z_mm.push_back(l.z_mm);
   Vec3 at = program.start_mm;
   bool open = false;  // the last path ends at `at`
@@ -65,6 +68,7 @@ PreviewScene preview_scene(const slicer::MotionProgram& program, double arc_tole
       PreviewPath p;
       p.layer = mv.layer;
       p.feature = mv.feature;
+      p.tool = mv.tool;
       p.travel = travel;
       p.points_mm.push_back(at);
       s.paths.push_back(std::move(p));
@@ -134,6 +138,54 @@ std::string hex_colour(const Rgb& c) {
   auto byte = [](double v) { return static_cast<int>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); };
   std::snprintf(text, sizeof text, "#%02x%02x%02x", byte(c.r), byte(c.g), byte(c.b));
   return text;
+}
+
+std::optional<Rgb> parse_hex_colour(const std::string& text) {
+  if (text.size() != 7 || text[0] != '#' ||
+      text.find_first_not_of("0123456789abcdefABCDEF", 1) != std::string::npos)
+    return std::nullopt;
+  const auto byte = [&](std::size_t at) {
+    return std::stoi(text.substr(at, 2), nullptr, 16) / 255.0;
+  };
+  return Rgb{byte(1), byte(3), byte(5)};
+}
+
+PreviewKey deposit_key(const PreviewScene& scene, const PreviewPath& path) {
+  if (path.feature != slicer::Feature::Pen) {
+    return {slicer::to_string(path.feature), feature_colour(path.feature)};
+  }
+  const int tool = std::max(path.tool, 0);
+  const auto k = static_cast<std::size_t>(tool);
+  if (k < scene.pen_colours.size()) {
+    if (const auto c = parse_hex_colour(scene.pen_colours[k])) {
+      return {"pen " + std::to_string(tool + 1) + " " + scene.pen_colours[k], *c};
+    }
+  }
+  // pens without a colour: dark grey, then colours far apart (Tableau 10)
+  static const Rgb kPens[] = {{0.10, 0.10, 0.10}, {0.12, 0.47, 0.71}, {0.84, 0.15, 0.16},
+                              {0.17, 0.63, 0.17}, {1.00, 0.50, 0.05}, {0.58, 0.40, 0.74},
+                              {0.55, 0.34, 0.29}, {0.89, 0.47, 0.76}, {0.09, 0.75, 0.81}};
+  return {"pen " + std::to_string(tool + 1), kPens[k % std::size(kPens)]};
+}
+
+std::vector<PreviewKey> deposit_keys(const PreviewScene& scene,
+                                     const std::function<bool(const PreviewPath&)>& keep) {
+  std::vector<std::pair<slicer::Feature, int>> used;
+  std::vector<const PreviewPath*> first;
+  for (const auto& p : scene.paths) {
+    if (p.travel || (keep && !keep(p))) continue;
+    const int tool = p.feature == slicer::Feature::Pen ? p.tool : 0;
+    if (std::find(used.begin(), used.end(), std::pair{p.feature, tool}) != used.end()) continue;
+    used.emplace_back(p.feature, tool);
+    first.push_back(&p);
+  }
+  std::vector<std::size_t> order(used.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return used[a] < used[b]; });
+  std::vector<PreviewKey> out;
+  for (std::size_t i : order) out.push_back(deposit_key(scene, *first[i]));
+  return out;
 }
 
 }  // namespace strand::post

@@ -7,6 +7,8 @@
 // feature each, arcs flattened), with bounds and the colour scheme shared by every format.
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +22,7 @@ struct PreviewPath {
   slicer::Feature feature = slicer::Feature::Infill;
   bool travel = false;
   std::vector<slicer::Vec3> points_mm;  // at least two
+  int tool = 0;                         // pen or extruder, 0-based (pen k of a plot is tool k-1)
 
   bool operator==(const PreviewPath&) const = default;
 };
@@ -41,12 +44,15 @@ struct PreviewScene {
   // What layer_z_mm holds, for labels: "z" (planar heights) or "offset" (the nozzle's
   // distance from a substrate).
   std::string layer_value = "z";
+  // Pens' colours from the file ("#rrggbb" for pen 1, 2, ...; empty where not given).
+  std::vector<std::string> pen_colours;
 
   bool operator==(const PreviewScene&) const = default;
 };
 
-// Arcs become chords within `arc_tolerance_mm`.
-PreviewScene preview_scene(const slicer::MotionProgram& program, double arc_tolerance_mm);
+// Arcs become chords within `arc_tolerance_mm`; `pen_colours` as ParsedGcode::pen_colours.
+PreviewScene preview_scene(const slicer::MotionProgram& program, double arc_tolerance_mm,
+                           std::vector<std::string> pen_colours = {});
 
 // A scene from paths already in 3D, for programs that are not planar G-code (pose CSVs and
 // rotary G-code mapped onto their substrate, toolpaths mapped through a Surface):
@@ -70,5 +76,21 @@ Rgb feature_colour(slicer::Feature f);
 // Blue (first layer) to red (last).
 Rgb layer_colour(int layer, int layer_count);
 std::string hex_colour(const Rgb& c);  // "#rrggbb"
+// "#rrggbb" -> colour; nullopt for anything else.
+std::optional<Rgb> parse_hex_colour(const std::string& text);
+
+// What a deposit is drawn in when coloured by feature, and its legend entry: the feature
+// ("wall", feature_colour), or for pen drawings each pen on its own ("pen 2", the pen's
+// colour from the file, else a distinct colour per pen; pen 1 dark grey).
+struct PreviewKey {
+  std::string name;
+  Rgb colour;
+  bool operator==(const PreviewKey& k) const { return name == k.name; }
+};
+PreviewKey deposit_key(const PreviewScene& scene, const PreviewPath& path);
+// The keys of the deposits `keep` accepts (all when empty), features in enum order, pens by
+// number: the legend's entries.
+std::vector<PreviewKey> deposit_keys(const PreviewScene& scene,
+                                     const std::function<bool(const PreviewPath&)>& keep = {});
 
 }  // namespace strand::post
