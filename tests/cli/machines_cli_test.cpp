@@ -14,15 +14,8 @@ namespace {
 // strand with XDG_CONFIG_HOME set to `config` (an absolute path), in `dir`.
 CliResult run_with_config(const std::string& config, const std::string& args,
                           const std::string& dir) {
-  const std::string out = dir + "/.o", err = dir + "/.e";
-  const std::string cmd = "cd '" + dir + "' && XDG_CONFIG_HOME='" + config + "' '" +
-                          std::string(STRAND_CLI) + "' " + args + " >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(cmd.c_str());
-  CliResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return run_in_shell("XDG_CONFIG_HOME='" + config + "' '" + std::string(STRAND_CLI) + "' " + args,
+                      dir);
 }
 
 void write(const std::string& path, const std::string& text) {

@@ -11,17 +11,6 @@
 namespace strand::testing {
 namespace {
 
-CliResult run_shell(const std::string& command, const std::string& dir) {
-  const std::string out = dir + "/.sh-out", err = dir + "/.sh-err";
-  const std::string cmd = "cd '" + dir + "' && (" + command + ") >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(cmd.c_str());
-  CliResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
 TEST(Manual, EveryFlagOfACommandIsOnItsPage) {
   const auto help = run_strand("scaffold --help");
   const auto page = run_strand("manual scaffold");
@@ -53,21 +42,21 @@ TEST(Manual, PagesFormatWithoutGroffWarnings) {
   const auto dir = fresh_dir("man");
   ASSERT_EQ(run_strand("manual --dir man1", dir).exit_code, 0);
   for (const char* page : {"strand.1", "strand-scaffold.1", "strand-plot.1", "strand-send.1"}) {
-    const auto r = run_shell(std::string("groff -man -Tutf8 -ww -z man1/") + page, dir);
+    const auto r = run_in_shell(std::string("groff -man -Tutf8 -ww -z man1/") + page, dir);
     EXPECT_EQ(r.exit_code, 0) << page << ": " << r.err;
     EXPECT_EQ(r.err, "") << page;
   }
-  const auto text = run_shell("groff -man -Tutf8 man1/strand.1 | col -b", dir);
+  const auto text = run_in_shell("groff -man -Tutf8 man1/strand.1 | col -b", dir);
   EXPECT_NE(text.out.find("EXIT STATUS"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("strand-scaffold(1)"), std::string::npos) << text.out;
 }
 
 // Completion candidates bash offers after typing `words` (the last one being completed).
 std::string complete(const std::string& script, const std::string& words, const std::string& dir) {
-  const auto r = run_shell("bash -c 'source " + script + "; COMP_WORDS=(" + words +
-                               "); COMP_CWORD=$((${#COMP_WORDS[@]} - 1)); _strand; "
-                               "echo \"${COMPREPLY[*]}\"'",
-                           dir);
+  const auto r = run_in_shell("bash -c 'source " + script + "; COMP_WORDS=(" + words +
+                                  "); COMP_CWORD=$((${#COMP_WORDS[@]} - 1)); _strand; "
+                                  "echo \"${COMPREPLY[*]}\"'",
+                              dir);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return r.out;
 }
@@ -94,7 +83,7 @@ TEST(Completion, BashCompletesCommandsFlagsAndMachineNames) {
 TEST(Install, TheInstalledProgramRunsWithItsProfilesPagesAndCompletion) {
   const auto dir = fresh_dir("install");
   const auto install =
-      run_shell("cmake --install '" + std::string(STRAND_BUILD_DIR) + "' --prefix prefix", dir);
+      run_in_shell("cmake --install '" + std::string(STRAND_BUILD_DIR) + "' --prefix prefix", dir);
   ASSERT_EQ(install.exit_code, 0) << install.err;
   for (const char* file :
        {"bin/strand", "share/man/man1/strand.1", "share/man/man1/strand-slice.1",
@@ -102,10 +91,10 @@ TEST(Install, TheInstalledProgramRunsWithItsProfilesPagesAndCompletion) {
         "share/strand/machines/deltawasp-2040-clay.json", "share/doc/strand/README.md"}) {
     EXPECT_TRUE(exists(dir + "/prefix/" + file)) << file;
   }
-  const auto version = run_shell("prefix/bin/strand --version", dir);
+  const auto version = run_in_shell("prefix/bin/strand --version", dir);
   EXPECT_EQ(version.exit_code, 0);
   EXPECT_EQ(version.out, run_strand("--version").out);
-  const auto job = run_shell(
+  const auto job = run_in_shell(
       "mkdir -p elsewhere && cd elsewhere && ../prefix/bin/strand scaffold --nozzle 0.84 --gap 1.6 "
       "--size 20x20 --height 2 --machine ../prefix/share/strand/machines/deltawasp-2040-clay.json "
       "-o s.gcode",
@@ -115,7 +104,7 @@ TEST(Install, TheInstalledProgramRunsWithItsProfilesPagesAndCompletion) {
   EXPECT_EQ(complete("prefix/share/bash-completion/completions/strand", "strand sli", dir),
             "slice\n");
 #ifndef STRAND_SANITIZE_BUILD  // debug line tables name the build directory
-  const auto paths = run_shell(
+  const auto paths = run_in_shell(
       "grep -c -F '" + std::string(STRAND_BUILD_DIR) + "' prefix/bin/strand || true", dir);
   EXPECT_EQ(paths.out, "0\n") << "the installed binary names the build tree";
 #endif

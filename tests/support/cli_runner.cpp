@@ -40,11 +40,9 @@ std::string fresh_dir(const std::string& tag) {
   return dir.string();
 }
 
-CliResult run_strand(const std::string& args, const std::string& where) {
-  const std::string dir = where.empty() ? fresh_dir("run") : where;
+CliResult run_in_shell(const std::string& command, const std::string& dir) {
   const std::string out = dir + "/.stdout", err = dir + "/.stderr";
-  const std::string cmd = "cd '" + dir + "' && '" + std::string(STRAND_CLI) + "' " + args +
-                          " >'" + out + "' 2>'" + err + "'";
+  const std::string cmd = "cd '" + dir + "' && (" + command + ") >'" + out + "' 2>'" + err + "'";
   const int status = std::system(cmd.c_str());
   CliResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -53,6 +51,11 @@ CliResult run_strand(const std::string& args, const std::string& where) {
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+CliResult run_strand(const std::string& args, const std::string& where) {
+  const std::string dir = where.empty() ? fresh_dir("run") : where;
+  return run_in_shell("'" + std::string(STRAND_CLI) + "' " + args, dir);
 }
 
 }  // namespace strand::testing

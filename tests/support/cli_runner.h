@@ -15,6 +15,8 @@ struct CliResult {
 // Without a directory it runs in a fresh one: tests run in parallel processes, and a shared
 // working directory would mix their captured output.
 CliResult run_strand(const std::string& args, const std::string& dir = "");
+// Any shell command line (e.g. with variables before the program, or a pipe) run in `dir`.
+CliResult run_in_shell(const std::string& command, const std::string& dir);
 // A fresh empty directory under the system temp dir, unique per call.
 std::string fresh_dir(const std::string& tag);
 std::string slurp(const std::string& path);
