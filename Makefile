@@ -5,7 +5,8 @@ DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev li
                    libgtest-dev libbenchmark-dev libpugixml-dev libpolyclipping-dev libtbb-dev \
                    libcairo2-dev libtinygltf-dev python3 libhersheyfont-dev hershey-fonts-data \
                    libfreetype-dev libfontconfig-dev fonts-dejavu-core libpotrace-dev libstb-dev \
-                   libnetpbm-dev libcgal-dev libopenmesh-dev
+                   libnetpbm-dev libcgal-dev libopenmesh-dev lib3mf-dev libzip-dev \
+                   libcpp-httplib-dev libsqlite3-dev
 MAKEFLAGS += --no-print-directory
 BUILD_DIR := build
 STRAND := $(BUILD_DIR)/cli/strand
@@ -51,6 +52,7 @@ build-strand: configure
 
 run: build-strand
 	@./samples/run_demo.sh $(STRAND) out
+	@echo "the workbench (design, preview, gallery in a browser): $(STRAND) serve, then open http://127.0.0.1:8080/"
 
 # bin/strand, share/strand/machines, share/man/man1 (strand.1 and one page per command),
 # bash and zsh completion, share/doc/strand. `make install PREFIX=~/.local` needs no root.
@@ -61,7 +63,7 @@ install: build-strand
 # Test-only tools: javac/java compile and run the generated Sunrise programs against stand-in
 # classes (tests/machines/sunrise_writer_test.cpp); Chromium loads the HTML previews headless;
 # groff checks the manual pages.
-TEST_PACKAGES := openjdk-17-jdk-headless chromium groff-base
+TEST_PACKAGES := openjdk-17-jdk-headless chromium groff-base curl
 
 test: build
 	@$(MAKE) deps DEBIAN_PACKAGES="$(TEST_PACKAGES)"

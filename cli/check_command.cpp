@@ -8,8 +8,10 @@
 #include <optional>
 
 #include "cli/commands.h"
+#include "cli/progress.h"
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
+#include "postprocess/inspect/mesh_pose_check.h"
 #include "postprocess/inspect/pose_check.h"
 #include "postprocess/preview/preview_image.h"
 #include "slicer/file_io.h"
@@ -17,6 +19,7 @@
 #include "slicer/json_input.h"
 #include "slicer/params.h"
 #include "slicer/tolerances.h"
+#include "slicer/unit_values.h"
 
 namespace strand::cli {
 
@@ -29,6 +32,7 @@ struct CheckArgs {
   bool json = false;
   std::vector<std::string> svg_layer;  // {N, OUT.svg}
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+  std::string substrate_mesh;  // a pose CSV's mesh (default: its record, part.substrate.json)
 };
 
 bool is_csv(const std::string& file) { return file.size() > 4 && file.ends_with(".csv"); }
@@ -65,19 +69,33 @@ void write_svg(const post::ParsedGcode& parsed, const post::CheckReport& report,
 
 // Pose CSVs and rotary G-code: checked on their cylinder.
 int run_curved_check(const CheckArgs& a, const std::string& text,
-                     const machines::MachineProfile* machine) {
+                     const machines::MachineProfile* machine, PhaseProgress* progress) {
   if (!a.svg_layer.empty())
     throw InputError("svg-layer: only for flat G-code (a curved file has no top view of a layer)");
   post::PoseCheckReport report;
-  if (is_csv(a.file)) {
+  const auto mesh = is_csv(a.file) ? post::find_csv_mesh(a.file, a.substrate_mesh) : std::nullopt;
+  if (mesh) {  // on a robot-held mesh: the cell from --machine, else the one it was planned for
+    std::unique_ptr<machines::MachineProfile> planned;
+    if (!machine && mesh->record)
+      planned = std::make_unique<machines::MachineProfile>(machines::load_profile(mesh->record->machine));
+    if (!machine && !planned)
+      throw InputError(
+          "machine: checking a pose CSV needs --machine (the robot cell, e.g. "
+          "kuka-iiwa14-wasp-cylinder)");
+    slicer::progress_phase(progress, "checking poses on the mesh");
+    report = post::check_mesh_pose_csv(text, a.file, machine ? *machine : *planned, *mesh);
+  } else if (is_csv(a.file)) {
     if (!machine)
       throw InputError(
           "machine: checking a pose CSV needs --machine (the robot cell, e.g. "
           "kuka-iiwa14-wasp-cylinder)");
+    slicer::progress_phase(progress, "checking poses");
     report = post::check_pose_csv(text, a.file, *machine);
   } else {
+    slicer::progress_phase(progress, "checking");
     report = post::check_rotary_gcode(text, a.file, machine);
   }
+  if (progress) progress->finish();
   // Text from the file (feature names, notes) may be any bytes: dump_json keeps it valid UTF-8.
   std::cout << (a.json ? slicer::dump_json(post::to_json(report)) + "\n" : post::to_text(report));
   return report.ok() ? 0 : 1;
@@ -88,6 +106,10 @@ int run_check(const CheckArgs& a) {
     throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) +
                      ": must be in [0.001, 1] (mm)");
   }
+  if (!a.substrate_mesh.empty() && !is_csv(a.file))
+    throw InputError("substrate-mesh: only for a robot cell's pose CSV (" + a.file + " is not one)");
+  const auto progress = command_progress("check", a.svg_layer.empty() ? 3 : 4);
+  slicer::progress_phase(progress.get(), "reading");
   const std::string text = slicer::read_file(a.file);
   // A set whose writing was killed between two renames still has its journal: its files may
   // be half old and half new (a KRL .src that does not match its .dat).
@@ -101,7 +123,7 @@ int run_check(const CheckArgs& a) {
   if (!a.machine.empty())
     machine = std::make_unique<machines::MachineProfile>(machines::load_profile(a.machine));
   if (is_csv(a.file) || post::is_rotary_gcode(text))
-    return run_curved_check(a, text, machine.get());
+    return run_curved_check(a, text, machine.get(), progress.get());
   if (machine && machine->robot.enabled) {
     throw InputError(
         "machine = " + a.machine +
@@ -109,7 +131,11 @@ int run_check(const CheckArgs& a) {
         a.machine + ")");
   }
   std::optional<post::RulesChoice> given;
-  if (!a.rules.empty()) given = {post::check_rules_from_string(a.rules), "given with --rules"};
+  if (!a.rules.empty()) {
+    const std::string rules = slicer::match_choice(a.rules, {"diw", "fdm", "plot"}).value_or(a.rules);
+    given = {post::check_rules_from_string(rules), "given with --rules"};
+  }
+  slicer::progress_phase(progress.get(), "parsing");
   post::CheckInput in;
   try {
     in = post::read_for_check(text, machine.get(), given);
@@ -124,8 +150,13 @@ int run_check(const CheckArgs& a) {
   options.arc_tolerance_mm = a.arc_tolerance_mm;
   options.touch_mm = slicer::kGcodeResolutionMm;
   options.machine = machine.get();
+  slicer::progress_phase(progress.get(), "checking " + std::to_string(parsed.program.layers.size()) + " layers");
   const post::CheckReport report = post::check_parsed(parsed, options);
-  if (!a.svg_layer.empty()) write_svg(parsed, report, a);
+  if (!a.svg_layer.empty()) {
+    slicer::progress_phase(progress.get(), "drawing the layer");
+    write_svg(parsed, report, a);
+  }
+  if (progress) progress->finish();
   std::cout << (a.json ? slicer::dump_json(post::to_json(report)) + "\n" : post::to_text(report));
   return report.ok() ? 0 : 1;
 }
@@ -150,6 +181,9 @@ void add_check_command(CLI::App& app, Action& action) {
       ->type_name("N OUT.svg");
   sub->add_option("--arc-tolerance", a->arc_tolerance_mm,
                   "chord error when arcs are flattened for the search [mm] (default 0.01)");
+  sub->add_option("--substrate-mesh", a->substrate_mesh,
+                  "a pose CSV's substrate mesh (default: the one its record part.substrate.json "
+                  "beside it names)");
   sub->callback([&action, a] { action = [a] { return run_check(*a); }; });
 }
 

@@ -23,5 +23,6 @@ void add_sweep_command(CLI::App& app, Action& action);
 void add_preview_command(CLI::App& app, Action& action);
 void add_slice_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);  // in slice_command.cpp
+void add_serve_command(CLI::App& app, Action& action);
 
 }  // namespace strand::cli

@@ -1,5 +1,6 @@
 // `strand <generator>`: flags from the generator's parameter table, then generate, plan,
 // emit, write atomically, report.
+#include <filesystem>
 #include <iostream>
 #include <map>
 #include <memory>
@@ -7,8 +8,9 @@
 #include "machines/profile.h"
 #include "patterns/registry.h"
 #include "cli/commands.h"
-#include "cli/job_runner.h"
+#include "jobs/job_runner.h"
 #include "cli/param_flags.h"
+#include "cli/progress.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -33,8 +35,12 @@ struct GenerateArgs {
 // The shared tail of `strand <generator>` and `strand job`: nothing is written unless
 // every step succeeded.
 int run_and_print(const patterns::GeneratorSpec& spec, const nlohmann::json& given,
-                  const JobSettings& s) {
-  std::cout << run_job(spec, given, s).summary;
+                  JobSettings s) {
+  const auto progress = command_progress(spec.name, s.substrate.empty() ? 5 : 3);
+  s.progress = progress.get();
+  const std::string summary = run_job(spec, given, s).summary;
+  if (progress) progress->finish();
+  std::cout << summary;
   if (s.viewer_e) {
     std::cout << "  preview copy   " << viewer_output_path(job_output_path(spec, s))
               << " (computed E, not for printing)\n";
@@ -68,7 +74,16 @@ nlohmann::json read_job(const std::string& path) {
 int run_job_json(const nlohmann::json& j, const std::string& path) {
   if (!j.is_object()) throw InputError("job = " + path + ": must be a JSON object");
   JobSpec job = job_spec_from_json(j, "job");
+  // A substrate mesh named in a job file is found from the job file's folder (it travels
+  // with the job, as samples/meshes/ does with samples/).
+  auto& substrate = job.settings.substrate;
+  if (substrate.is_object() && substrate.contains("mesh") && substrate.at("mesh").is_string()) {
+    const std::filesystem::path mesh(substrate.at("mesh").get<std::string>());
+    if (mesh.is_relative())
+      substrate["mesh"] = (std::filesystem::path(path).parent_path() / mesh).lexically_normal().string();
+  }
   job.settings.inputs.push_back(path);
+  job.settings.output_stem = std::filesystem::path(path).stem().string();  // spec.json -> spec.gcode
   return run_and_print(*job.generator, job.params, job.settings);
 }
 
@@ -100,7 +115,9 @@ void add_job_command(CLI::App& app, Action& action) {
   auto output = std::make_shared<std::string>();
   auto report = std::make_shared<std::string>();
   sub->add_option("spec", *path, "job file (JSON)")->required();
-  sub->add_option("-o,--output", *output, "override the job's output path");
+  sub->add_option("-o,--output", *output,
+                  "override the job's output path (default: the job's \"output\", else SPEC's name "
+                  "with .gcode, or .csv for a robot cell)");
   sub->add_option("--report", *report, "override the job's report path");
   sub->callback([&action, path, output, report] {
     action = [path, output, report] {

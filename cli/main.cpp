@@ -10,6 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/manual.h"
+#include "cli/progress.h"
 #include "cli/suggest.h"
 #include "cli/version.h"
 #include "slicer/file_io.h"
@@ -43,6 +44,18 @@ int fail(const std::string& message) {
   return 2;
 }
 
+// --quiet and --progress on strand itself and on every command (so each --help, manual page
+// and completion lists them): the same two switches wherever they are written.
+void add_global_flags(CLI::App& app, bool& quiet, bool& progress) {
+  app.add_flag("--quiet", quiet, "no progress on stderr (bars, phase lines)");
+  app.add_flag("--progress", progress,
+               "a progress line per phase on stderr from the start, even for short runs and "
+               "without a terminal (default: a bar on a terminal, else lines once a run passes 1 s)");
+  for (CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    add_global_flags(*sub, quiet, progress);
+  }
+}
+
 int run(int argc, char** argv) {
   CLI::App app{"strand: toolpaths for Direct Ink Writing and pen plotting (mm, mm/min)"};
   app.require_subcommand(1);
@@ -61,7 +74,10 @@ int run(int argc, char** argv) {
   strand::cli::add_preview_command(app, action);
   strand::cli::add_slice_command(app, action);
   strand::cli::add_mesh_command(app, action);
+  strand::cli::add_serve_command(app, action);
   strand::cli::add_manual_commands(app, action);
+  bool quiet = false, progress = false;
+  add_global_flags(app, quiet, progress);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -77,6 +93,9 @@ int run(int argc, char** argv) {
     const std::vector<std::string> args(argv + 1, argv + argc);
     return fail(strand::cli::explain_unknown_words(app, args).value_or(e.what()));
   }
+  strand::cli::set_progress_mode(quiet      ? strand::cli::ProgressMode::Quiet
+                                  : progress ? strand::cli::ProgressMode::Always
+                                             : strand::cli::ProgressMode::Auto);
   return action ? action() : 0;
 }
 

@@ -79,7 +79,16 @@ std::string man_page(const CLI::App& app, const CLI::App* command, const std::st
     out +=
         ".SH OPTIONS\n.TP\n.B \\-\\-help\nShow the commands, or a command's flags.\n"
         ".TP\n.B \\-\\-version\nPrint the version and the libraries strand was built with.\n"
-        ".SH UNITS\nLengths in millimetres, speeds in mm/min, angles in degrees.\n"
+        ".TP\n.B \\-\\-quiet\nNo progress on standard error (any command).\n"
+        ".TP\n.B \\-\\-progress\nA progress line per phase on standard error from the start "
+        "(default: a bar on a terminal, otherwise lines once a run passes one second).\n"
+        ".SH UNITS\nLengths in millimetres, speeds in mm/min, angles in degrees. A value may "
+        "carry its unit: mm, cm, m, um, in; mm/min, mm/s; deg, rad (0.84mm, 840um, 250mm/s, "
+        "36x36mm); it is converted to the unit --help shows, and a unit of another kind is "
+        "refused. Page sizes take paper names: A0 to A6, letter, legal, tabloid, portrait "
+        "unless landscape is added (A4 landscape). Choices take any case.\n"
+        ".SH FILES\nA command that writes one file names it after its input unless \\-o is "
+        "given (drawing.svg \\(-> drawing.gcode), and never replaces the input.\n"
         ".SH EXIT STATUS\n.TP\n.B 0\nDone.\n.TP\n.B 1\nA check found problems, or a sweep "
         "point failed.\n.TP\n.B 2\nBad input: one line on standard error naming the "
         "parameter and its allowed range; no output file is written.\n.SH SEE ALSO\n";
@@ -122,7 +131,7 @@ std::string bash_completion(const CLI::App& app, const std::vector<std::string>&
          "  if [[ $COMP_CWORD -eq 1 ]]; then\n"
          "    COMPREPLY=($(compgen -W '" +
          joined(commands) +
-         " --help --version' -- \"$cur\"))\n"
+         " --help --version --quiet --progress' -- \"$cur\"))\n"
          "    return\n"
          "  fi\n"
          "  case \"$prev\" in\n"

@@ -26,7 +26,7 @@ std::string type_name_for(const slicer::ParamDef& d) {
   switch (d.type) {
     case slicer::ParamType::Integer: return "N";
     case slicer::ParamType::NumberList: return "LIST";
-    case slicer::ParamType::Size2: return "WxD";
+    case slicer::ParamType::Size2: return d.paper ? "WxH|PAPER" : "WxD";
     case slicer::ParamType::Text: return "NAME";
     case slicer::ParamType::Number: break;
   }

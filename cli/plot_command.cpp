@@ -5,8 +5,10 @@
 #include <utility>
 
 #include "cli/commands.h"
+#include "cli/output_path.h"
 #include "cli/param_flags.h"
 #include "cli/plot_pipeline.h"
+#include "cli/progress.h"
 #include "cli/trace_input.h"
 #include "machines/erase_pattern.h"
 #include "slicer/file_io.h"
@@ -24,7 +26,7 @@ const slicer::ParamTable& plot_table() {
   static const slicer::ParamTable kTable{
       "plot",
       {
-          {"fit", ParamType::Size2, "mm", "fit the drawing into WxH keeping its aspect, centred in the drawable area", 1e-3},
+          {"fit", ParamType::Size2, "mm", "fit the drawing into WxH, or a paper (A0-A6, letter, legal, tabloid; portrait, or add landscape: \"A4 landscape\"), keeping its aspect, centred in the drawable area", 1e-3, false, std::nullopt, false, nullptr, "", {}, true},
           {"scale", ParamType::Number, "", "times the SVG's physical size (ignored with --fit)", 0.0, true, 1e4, false, 1.0},
           {"offset", ParamType::NumberList, "mm", "X,Y shift after centring", std::nullopt, false, std::nullopt, false, nlohmann::json::array({0, 0})},
           {"tolerance", ParamType::Number, "mm", "end-to-end error bound: curve flattening + kinematic bow + rounding", 0.001, false, 5.0, false, 0.05},
@@ -33,6 +35,7 @@ const slicer::ParamTable& plot_table() {
           {"hatch-angle", ParamType::NumberList, "deg", "angle of the hatch lines, one value or one per pen (pen 1 first, the last repeats)", -180.0, false, 180.0, false, nlohmann::json::array({45})},
           {"text", ParamType::Text, "", "how <text> is drawn: single-stroke Hershey font, the outline font the drawing names (fontconfig), or not at all", std::nullopt, false, std::nullopt, false, "hershey", "", {"hershey", "outline", "none"}},
           {"font", ParamType::Text, "", "hershey:NAME for --text hershey (futural, rowmans, scripts, timesr, ...); an installed family for --text outline (replaces the drawing's)", std::nullopt, false, std::nullopt, false, nullptr, "hershey:futural, or the drawing's own fonts"},
+          {"text-width", ParamType::Text, "", "--text hershey: each glyph's own advance, or every run scaled across (not up) to the advance of the font the drawing names (fontconfig, FreeType) so lines stay as long as a browser draws them", std::nullopt, false, std::nullopt, false, "natural", "", {"natural", "fit"}},
           {"hatch-spacing", ParamType::NumberList, "mm", "distance between hatch lines or concentric rings, one value or one per pen", 0.0, true, std::nullopt, false, nullptr, "the pen width"},
       }};
   return kTable;
@@ -71,14 +74,18 @@ slicer::TextOptions text_options(const nlohmann::json& v) {
   if (t.mode == slicer::TextMode::Outline && hershey) {
     throw InputError("plot.font = " + t.font + ": a Hershey font is single-stroke; use --text hershey with it");
   }
+  t.fit_width = v.at("text-width").get<std::string>() == "fit";
+  if (t.fit_width && t.mode == slicer::TextMode::Outline) {
+    throw InputError("plot.text-width = fit: applies to --text hershey (outline letters have the font's own widths)");
+  }
   return t;
 }
 
 // The image traced into pen layers; unless the user chose hatch angles, level k hatches at
 // 45 + 180 (k - 1) / N degrees so that darker areas, covered by more levels, cross-hatch.
-void read_traced(const PlotArgs& a, PlotRequest& r) {
+void read_traced(const PlotArgs& a, PlotRequest& r, slicer::Progress* progress) {
   const nlohmann::json tv = slicer::resolve_params(trace_table(), given_params(trace_table(), a.trace_flags));
-  const TracedImage t = trace_file(a.svg, trace_options(tv));
+  const TracedImage t = trace_file(a.svg, trace_options(tv), progress);
   if (t.layers.empty()) throw InputError("trace: " + a.svg + " has no pixel darker than the threshold (try --threshold)");
   r.drawing = drawing_of(t.layers, t.trace.size_mm);
   r.parameters["trace"] = tv;
@@ -90,21 +97,25 @@ void read_traced(const PlotArgs& a, PlotRequest& r) {
   }
 }
 
-int run_plot(const PlotArgs& a) {
+int run_plot(PlotArgs a) {
+  if (a.output.empty()) a.output = output_from_input(a.svg, ".gcode");  // drawing.svg -> drawing.gcode
+  const auto progress = command_progress("plot", a.trace ? 7 : 6);
   PlotRequest r;
   r.parameters = slicer::resolve_params(plot_table(), given_params(plot_table(), a.flags));
   r.options = plot_options(r.parameters, a);
   r.input = a.svg;
   const machines::MachineProfile m = machines::load_profile(a.machine);
   if (a.trace) {
-    read_traced(a, r);
+    read_traced(a, r, progress.get());
   } else {
+    slicer::progress_phase(progress.get(), "reading the drawing");
     const nlohmann::json trace_given = given_params(trace_table(), a.trace_flags);
     if (!trace_given.empty()) throw InputError("trace." + trace_given.begin().key() + ": applies to images; add --trace");
     r.drawing = slicer::import_svg(slicer::read_file(a.svg), a.svg);
+    if (!r.drawing.texts.empty()) slicer::progress_phase(progress.get(), "lettering");
     draw_text_into(r, text_options(r.parameters));
   }
-  PlotResult p = plot_drawing(std::move(r), m);
+  PlotResult p = plot_drawing(std::move(r), m, progress.get());
   p.report["gcode"] = a.output;
   std::string erase;
   if (!a.erase.empty()) {
@@ -116,7 +127,9 @@ int run_plot(const PlotArgs& a) {
   out.stage(a.output, p.gcode);
   if (!erase.empty()) out.stage(a.erase, erase);
   if (!a.report.empty()) out.stage(a.report, slicer::dump_json(p.report) + "\n");
+  slicer::progress_phase(progress.get(), "writing files");
   out.commit();
+  if (progress) progress->finish();
   std::cout << "plot " << a.svg << " -> " << a.output << " (" << m.name << ")\n" << p.summary;
   return 0;
 }
@@ -128,7 +141,7 @@ void add_plot_command(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand("plot", "SVG drawing -> pen plotter G-code");
   sub->add_option("drawing", a->svg, "SVG file (an image with --trace)")->required();
   sub->add_option("--machine", a->machine, "plotter profile name or path to a .json profile (default xy-plotter-servo)");
-  sub->add_option("-o,--output", a->output, "G-code file to write")->required();
+  sub->add_option("-o,--output", a->output, "G-code file to write (default: DRAWING's name with .gcode)");
   sub->add_option("--report", a->report, "write a JSON report here");
   sub->add_option("--erase", a->erase, "also write the erase sweeps over the drawing here");
   sub->add_flag("--mirror", a->mirror, "mirror left-right (drawing on glass)");

@@ -91,9 +91,11 @@ void draw_text_into(PlotRequest& r, const slicer::TextOptions& o) {
   r.notes.emplace_back("text", t.summary());
 }
 
-PlotResult plot_drawing(PlotRequest r, const machines::MachineProfile& m) {
+PlotResult plot_drawing(PlotRequest r, const machines::MachineProfile& m,
+                        slicer::Progress* progress) {
   const post::PlotOptions& o = r.options;
   PlotResult out;
+  slicer::progress_phase(progress, "laying out and filling");
   out.toolpath = post::layout_plot(r.drawing, m, o);
   std::vector<slicer::SvgShape>().swap(r.drawing.shapes);  // laid out: only `skipped` is read on
   slicer::release_free_memory();
@@ -103,6 +105,7 @@ PlotResult plot_drawing(PlotRequest r, const machines::MachineProfile& m) {
   const std::size_t strokes_in = strokes.size();
   const auto before = post::pen_up_travel(strokes, setup.home_mm, metric);
   if (o.order) {
+    slicer::progress_phase(progress, "merging and ordering strokes");
     strokes = post::merge_touching(strokes, 0.2 * o.tolerance_mm * post::kFlattenShare);
     post::OrderOptions oo;
     oo.start_mm = setup.home_mm;
@@ -110,6 +113,7 @@ PlotResult plot_drawing(PlotRequest r, const machines::MachineProfile& m) {
     strokes = post::order_strokes(strokes, oo);
   }
   const auto after = post::pen_up_travel(strokes, setup.home_mm, metric);
+  slicer::progress_phase(progress, "planning");
   const slicer::MotionProgram program = post::plan_pen(out.toolpath, m, o.tolerance_mm);
   const post::PenEstimate e = post::estimate_pen(program, m);
 
@@ -117,6 +121,7 @@ PlotResult plot_drawing(PlotRequest r, const machines::MachineProfile& m) {
   out.report = report_json(r, m, e, ord);
   const std::vector<std::string> header = header_lines(r, m, e, ord, out.toolpath.derived["scale"].get<double>(),
                    out.toolpath.derived["pen_colours"].get<std::vector<std::string>>());
+  slicer::progress_phase(progress, "writing G-code");
   out.gcode = machines::emit_pen_gcode(program, m, header);
 
   std::ostringstream sum;

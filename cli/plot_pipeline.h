@@ -10,6 +10,7 @@
 
 #include "machines/profile.h"
 #include "postprocess/plot/plot_layout.h"
+#include "slicer/progress.h"
 #include "slicer/svg_import.h"
 #include "slicer/text_layout.h"
 #include "slicer/toolpath.h"
@@ -39,6 +40,8 @@ void draw_text_into(PlotRequest& request, const slicer::TextOptions& o);
 // Throws InputError (nothing drawable, out of reach, bad pens, tolerance, fill budget).
 // Takes the request by value: its shapes are dropped once laid out, before ordering and
 // planning (a 300,000-line drawing holds about a third of the command's peak memory).
-PlotResult plot_drawing(PlotRequest request, const machines::MachineProfile& m);
+// `progress` (may be null) is told the phases: laying out, ordering, planning, G-code.
+PlotResult plot_drawing(PlotRequest request, const machines::MachineProfile& m,
+                        slicer::Progress* progress = nullptr);
 
 }  // namespace strand::cli

@@ -5,6 +5,8 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/output_path.h"
+#include "cli/progress.h"
 #include "cli/curved_preview.h"
 #include "postprocess/inspect/curved_files.h"
 #include "postprocess/inspect/gcode_parser.h"
@@ -16,6 +18,7 @@
 #include "slicer/json_input.h"
 #include "slicer/params.h"
 #include "slicer/tolerances.h"
+#include "slicer/unit_values.h"
 
 namespace strand::cli {
 
@@ -63,7 +66,10 @@ post::ImageOptions image_options(const PreviewArgs& a) {
   return o;
 }
 
-int run(const PreviewArgs& a) {
+int run(PreviewArgs a) {
+  if (a.output.empty()) a.output = output_from_input(a.input, "-preview.png");  // part.gcode -> part-preview.png
+  a.colour = slicer::match_choice(a.colour, {"feature", "layer"}).value_or(a.colour);
+  a.view = slicer::match_choice(a.view, {"top", "iso", "both"}).value_or(a.view);
   const std::string ext = std::filesystem::path(a.output).extension().string();
   if (ext != ".png" && ext != ".svg" && ext != ".html" && ext != ".glb") {
     throw InputError("--output = " + a.output + ": extension must be .png, .svg, .html or .glb");
@@ -72,6 +78,8 @@ int run(const PreviewArgs& a) {
     throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) +
                      ": must be in [0.001, 1] (mm)");
   }
+  const auto progress = command_progress("preview", a.marks ? 4 : 3);
+  slicer::progress_phase(progress.get(), "reading");
   const std::string gcode = slicer::read_file(a.input);
   // A pose CSV or rotary G-code is drawn on its workpiece (the cylinder's axis along x, its
   // u = 0 line on top); checks marks are for flat files.
@@ -79,28 +87,35 @@ int run(const PreviewArgs& a) {
   if (curved && a.marks)
     throw InputError("marks: only for flat G-code (a curved file is checked with strand check)");
   post::ParsedGcode parsed;
+  slicer::progress_phase(progress.get(), "parsing");
   try {  // errors name the file as strand check names it
     if (!curved) parsed = post::parse_gcode(gcode);
   } catch (const InputError& e) {
     throw InputError("input = " + a.input + ": " + e.what());
   }
   const post::PreviewScene scene =
-      curved ? curved_scene(post::read_curved_part(gcode, a.input), a.arc_tolerance_mm)
+      curved ? curved_file_scene(a.input, gcode, a.arc_tolerance_mm)
              : post::preview_scene(parsed.program, a.arc_tolerance_mm, parsed.pen_colours);
   if (scene.paths.empty()) throw InputError("input = " + a.input + ": no moves to draw (is it G-code?)");
   post::ImageOptions o = image_options(a);
   if (a.marks) {
+    slicer::progress_phase(progress.get(), "checking");
     post::CheckOptions check;
     check.arc_tolerance_mm = a.arc_tolerance_mm;
     check.touch_mm = slicer::kGcodeResolutionMm;
     o.marks = post::marks_from(post::check_parsed(parsed, check));
   }
+  slicer::progress_phase(progress.get(), "drawing");
   std::string bytes;
   if (ext == ".png") bytes = post::render_png(scene, o);
   if (ext == ".svg") bytes = post::render_svg(scene, o);
   if (ext == ".html") bytes = post::render_html(scene, std::filesystem::path(a.input).filename().string());
   if (ext == ".glb") bytes = post::render_glb(scene, {.tubes = !a.lines});
-  slicer::write_file_atomic(a.output, bytes);
+  slicer::OutputFiles out;
+  out.protect_input(a.input);
+  out.stage(a.output, bytes);
+  out.commit();
+  if (progress) progress->finish();
   std::cout << "preview " << a.input << " -> " << a.output << " (" << scene.layer_z_mm.size() << " layers, "
             << scene.paths.size() << " paths)\n";
   return 0;
@@ -112,7 +127,8 @@ void add_preview_command(CLI::App& app, Action& action) {
   auto a = std::make_shared<PreviewArgs>();
   CLI::App* sub = app.add_subcommand("preview", "draw any G-code file as .png, .svg, .html or .glb (by -o's extension)");
   sub->add_option("gcode", a->input, "G-code file")->required();
-  sub->add_option("-o,--output", a->output, "preview file: .png, .svg, .html or .glb")->required();
+  sub->add_option("-o,--output", a->output,
+                  "preview file: .png, .svg, .html or .glb (default: GCODE's name with -preview.png)");
   sub->add_option("--layer", a->layer, "only this layer (0-based, as ;LAYER:n; png/svg; default all)")
       ->check(CLI::Range(0, 100000000));
   sub->add_option("--colour", a->colour, "colour by feature or layer (png/svg; default feature)");

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/progress.h"
 #include "machines/gcode_format.h"
 #include "machines/send/resume.h"
 #include "machines/send/sender.h"
@@ -73,7 +74,7 @@ std::map<int, double> time_left_after(const std::string& text) {
   return left;
 }
 
-std::string clock_text(double s) {
+std::string hms_text(double s) {
   const long v = static_cast<long>(s + 0.5);
   return std::to_string(v / 3600) + "h" + (v / 60 % 60 < 10 ? "0" : "") +
          std::to_string(v / 60 % 60) + "m" + (v % 60 < 10 ? "0" : "") + std::to_string(v % 60) +
@@ -89,7 +90,7 @@ void draw_progress(const machines::Streamer& s, const std::vector<machines::Comm
       it == left.begin() ? (left.empty() ? 0.0 : left.begin()->second) : std::prev(it)->second;
   const int bar = static_cast<int>(f * 30);
   std::cerr << "\r[" << std::string(bar, '#') << std::string(30 - bar, ' ') << "] "
-            << machines::fmt_fixed(100 * f, 0) << "% line " << line << ", " << clock_text(rest)
+            << machines::fmt_fixed(100 * f, 0) << "% line " << line << ", " << hms_text(rest)
             << " left " << std::flush;
 }
 
@@ -209,7 +210,7 @@ int run_send(const SendArgs& a) {
   if (!preamble.empty() && !run_extra(port, fw, preamble, o))
     throw InputError("send: the controller refused the resume preamble");
   machines::Streamer s(fw, cmds);
-  const bool tty = isatty(STDERR_FILENO);
+  const bool tty = isatty(STDERR_FILENO) && progress_mode() != ProgressMode::Quiet;
   const auto progress = [&](const machines::Streamer& st) {
     if (tty) draw_progress(st, cmds, left);
   };

@@ -8,8 +8,12 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/output_path.h"
+#include "cli/progress.h"
 #include "cli/slice_job.h"
+#include "jobs/job_runner.h"
 #include "machines/profile.h"
+#include "patterns/region_pattern.h"
 #include "patterns/registry.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "postprocess/preview/preview_file.h"
@@ -20,6 +24,7 @@
 #include "slicer/mesh_check.h"
 #include "slicer/mesh_io.h"
 #include "slicer/params.h"
+#include "slicer/unit_values.h"
 
 namespace strand::cli {
 
@@ -73,10 +78,24 @@ nlohmann::json pattern_values(const SliceArgs& a) {
 }
 
 int run_slice(SliceArgs a) {
+  SliceSettings& s = a.settings;  // choices in any case: --up Y, --place Center
+  s.up = slicer::match_choice(s.up, {"z", "y"}).value_or(s.up);
+  s.place = slicer::match_choice(s.place, {"center", "origin"}).value_or(s.place);
+  s.mesh_units = slicer::match_choice(s.mesh_units, {"mm", "cm", "m", "in"}).value_or(s.mesh_units);
+  std::vector<std::string> names;
+  for (const auto& g : patterns::generators()) names.push_back(g.name);
+  s.pattern = slicer::match_choice(s.pattern, names).value_or(s.pattern);
   a.settings.pattern_values = pattern_values(a);
-  a.settings.on_part_size = [](const slicer::Vec3& size) {
+  if (a.settings.output.empty()) {
+    const std::string& input = a.settings.part.empty() ? a.settings.onto : a.settings.part;
+    a.settings.output = input.empty() ? "slice.gcode" : output_from_input(input, ".gcode");
+  }
+  const auto progress = command_progress("slice", 8 + a.previews.size());
+  a.settings.progress = progress.get();
+  a.settings.on_part_size = [&progress](const slicer::Vec3& size) {
     char line[160];
     std::snprintf(line, sizeof line, "part %.3f x %.3f x %.3f mm\n", size.x(), size.y(), size.z());
+    if (progress) progress->clear();
     std::cout << line << std::flush;
   };
   const SliceResult r = produce_slice(a.settings);
@@ -85,9 +104,15 @@ int run_slice(SliceArgs a) {
     if (!input.empty()) out.protect_input(input);
   }
   out.stage(a.settings.output, r.produced.gcode);
+  if (a.settings.viewer_e) out.stage(viewer_output_path(a.settings.output), r.produced.viewer_gcode);
   if (!a.report.empty()) out.stage(a.report, slicer::dump_json(r.produced.report) + "\n");
-  for (const std::string& path : a.previews) out.stage(path, preview_of(r, a.settings, path));
+  for (const std::string& path : a.previews) {
+    slicer::progress_phase(progress.get(), "drawing " + path);
+    out.stage(path, preview_of(r, a.settings, path));
+  }
+  slicer::progress_phase(progress.get(), "writing files");
   out.commit();
+  if (progress) progress->finish();
   std::cout << r.produced.summary;
   const auto& d = r.toolpath.derived;
   if (d.contains("pattern_strands_per_layer")) {
@@ -128,7 +153,7 @@ void add_slice_command(CLI::App& app, Action& action) {
   SliceSettings& s = a->settings;
   CLI::App* sub = app.add_subcommand(
       "slice",
-      "fill a mesh (STL, OBJ, PLY, OFF, glTF) with a pattern in non-crossing strands per layer");
+      "fill a mesh (STL, OBJ, PLY, OFF, glTF, 3MF) with a pattern in non-crossing strands per layer");
   sub->add_option("part", s.part, "the part's mesh file (or use --onto)");
   sub->add_option(
       "--onto", s.onto,
@@ -141,8 +166,17 @@ void add_slice_command(CLI::App& app, Action& action) {
     for (const auto& d : g.table().defs) {
       if (a->options.count(d.key)) continue;
       const std::string unit = d.unit.empty() ? "" : " [" + d.unit + "]";
-      a->options[d.key] =
-          sub->add_option("--" + d.key, a->text[d.key], g.name + ": " + d.help + unit);
+      // A part's shape sets the extent: those flags are for --onto's specimen only, and
+      // nothing the generator requires is required here.
+      std::string help = d.help;
+      if (patterns::is_extent_key(d.key)) {
+        for (const char* req : {"; required", "required; "}) {
+          if (const auto at = help.find(req); at != std::string::npos)
+            help.erase(at, std::string(req).size());
+        }
+        help = "with --onto only: " + help;
+      }
+      a->options[d.key] = sub->add_option("--" + d.key, a->text[d.key], g.name + ": " + help + unit);
     }
   }
   sub->add_option("--perimeters", s.perimeters,
@@ -166,7 +200,11 @@ void add_slice_command(CLI::App& app, Action& action) {
   sub->add_option("--up", s.up, "the file's up axis: z, or y (+Y-up OBJ/STL exports; default z)");
   sub->add_option("--machine", s.machine,
                   "machine profile name or path (default deltawasp-2040-clay)");
-  sub->add_option("-o,--output", s.output, "G-code file to write (default slice.gcode)");
+  s.output.clear();  // run_slice names it after the part
+  sub->add_option("-o,--output", s.output, "G-code file to write (default: PART's name with .gcode)");
+  sub->add_flag("--viewer-e", s.viewer_e,
+                "also write OUTPUT.viewer-e.gcode with E computed from the bead volume, for viewers "
+                "that show only extruding moves (PrusaSlicer's); preview only, not for printing");
   sub->add_option("--report", a->report, "write a JSON report here");
   sub->add_option("--preview", a->previews,
                   "also draw the result with the mesh under it, translucent: .png, .svg, .html "
@@ -265,7 +303,7 @@ void add_mesh_command(CLI::App& app, Action& action) {
       "mesh",
       "a mesh's size, triangles, shells, holes, non-manifold edges and vertices, "
       "self-intersections and volume; --repair -o FILE.stl writes it repaired");
-  sub->add_option("part", a->part, "the mesh file (STL, OBJ, PLY, OFF, glTF)")->required();
+  sub->add_option("part", a->part, "the mesh file (STL, OBJ, PLY, OFF, glTF, 3MF)")->required();
   sub->add_option("--mesh-units", a->units, "units of the mesh file: mm, cm, m, in (default mm)");
   sub->add_flag("--repair", a->repair,
                 "CGAL soup repair, stitching and hole filling (kept only when no worse)");

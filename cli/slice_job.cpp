@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "cli/job_runner.h"
+#include "jobs/job_runner.h"
 #include "machines/profile.h"
 #include "patterns/region_fill.h"
 #include "patterns/registry.h"
@@ -71,12 +71,17 @@ slicer::PreparedMesh load_part(const SliceSettings& s, double& scale) {
   if (s.up == "y" && (ext == ".gltf" || ext == ".glb" || ext == ".GLTF" || ext == ".GLB")) {
     throw InputError("slice.up = y: glTF is +Y up by definition and is turned to +Z already");
   }
+  if ((ext == ".3mf" || ext == ".3MF") && s.mesh_units != "mm") {
+    throw InputError("slice.mesh-units = " + s.mesh_units +
+                     ": a 3MF file states its own unit (use --scale to resize it)");
+  }
   check_scale(s.scale);
   if (!s.scale_to_fit.empty() && s.scale != 1.0) {
     throw InputError("slice.scale-to-fit = " + s.scale_to_fit +
                      ": give --scale or --scale-to-fit, not both");
   }
   const slicer::MeshPlacement placement = placement_of(s);
+  slicer::progress_phase(s.progress, "reading the mesh");
   slicer::Mesh file = slicer::read_mesh_file(s.part);
   if (s.up == "y") {
     for (slicer::Vec3& v : file.vertices_mm) v = slicer::Vec3(v.x(), -v.z(), v.y());
@@ -86,6 +91,7 @@ slicer::PreparedMesh load_part(const SliceSettings& s, double& scale) {
   if (!s.scale_to_fit.empty()) scale = scale_to_fit(slicer::bounds(raw).size_mm(), s.scale_to_fit);
   if (scale != 1.0)
     raw = slicer::place_mesh(std::move(raw), {scale, slicer::Vec3::Zero(), placement.place});
+  slicer::progress_phase(s.progress, s.repair ? "checking and repairing the mesh" : "checking the mesh");
   slicer::PreparedMesh part = slicer::prepare_mesh(raw, {s.repair, s.strict}, "mesh = " + s.part);
   // Repairs may add triangles at the extremes: rest the part on the bed again.
   part.mesh = slicer::place_mesh(part.mesh, {1.0, slicer::Vec3::Zero(), placement.place});
@@ -264,6 +270,7 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   const int layers = layer_count(pattern, size.z(), half);
   patterns::PartFill fill;
   slicer::ContourStats contours;
+  slicer::progress_phase(s.progress, "slicing");
   fill.layers = slicer::slice_layers(r.part.mesh, pattern.layer_height_mm, layers, &contours);
   check_printable(fill.layers, size, pattern);
   r.notes = r.part.defects;
@@ -273,6 +280,8 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   fill.half_extent_mm = half;
   fill.volume_mm3 = slicer::signed_volume_mm3(r.part.mesh);
   fill.perimeters = s.perimeters;
+  fill.progress = s.progress;
+  slicer::progress_phase(s.progress, "filling layers", fill.layers.size());
   r.toolpath = patterns::fill_part(fill, pattern);
   r.toolpath.parameters = slice_parameters(s, pattern);
   r.toolpath.derived["size_mm"] = {size.x(), size.y(), size.z()};
@@ -282,7 +291,8 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   r.toolpath.derived["mesh_notes"] = r.notes;
   r.toolpath.derived["skipped_regions"] = skipped;
   r.produced = post::produce(r.toolpath, machine,
-                             post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output);
+                             post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output,
+                             s.viewer_e, {}, s.progress);
   return r;
 }
 
@@ -290,17 +300,21 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
 SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& g,
                          const machines::MachineProfile& machine) {
   SliceResult r;
+  slicer::progress_phase(s.progress, "generating");
   r.toolpath = g.generate(slicer::resolve_params(g.table(), s.pattern_values));
+  slicer::progress_phase(s.progress, "reading the substrate");
   const slicer::Mesh substrate =
       slicer::place_mesh(slicer::read_mesh_file(s.onto), placement_of(s));
   const slicer::MeshSurface surface(substrate, s.onto);
   const post::PlanOptions options = post::plan_options_from(r.toolpath, s.arc_tolerance_mm);
+  slicer::progress_phase(s.progress, "draping");
   slicer::MotionProgram program = post::plan_draped(r.toolpath, surface, machine, options);
   r.toolpath.parameters["onto"] = s.onto;
   r.toolpath.parameters["mesh-units"] = s.mesh_units;
   r.toolpath.parameters["rotate"] = s.rotate;
   r.toolpath.derived["substrate"] = surface.describe();
-  r.produced = post::produce_program(r.toolpath, std::move(program), machine, options, s.output);
+  r.produced = post::produce_program(r.toolpath, std::move(program), machine, options, s.output,
+                                     s.viewer_e, {}, s.progress);
   r.part.mesh = substrate;  // drawn under the path by --preview
   return r;
 }
@@ -378,6 +392,7 @@ SliceResult produce_slice(const SliceSettings& s) {
                      "): slice and --onto need a 3-axis printer (a delta or Cartesian profile)");
   }
   SliceResult out = s.onto.empty() ? slice_part(s, *g, machine) : produce_onto(s, *g, machine);
+  slicer::progress_phase(s.progress, "checking");
   vet_produced(out.produced, machine, s.arc_tolerance_mm);
   return out;
 }

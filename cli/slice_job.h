@@ -9,6 +9,7 @@
 
 #include "postprocess/plan/produce.h"
 #include "slicer/mesh_check.h"
+#include "slicer/progress.h"
 #include "slicer/tolerances.h"
 
 namespace strand::cli {
@@ -29,13 +30,17 @@ struct SliceSettings {
   std::string rotate = "0,0,0";  // X,Y,Z degrees
   bool repair = false;
   bool strict = false;       // refuse any mesh defect instead of slicing the soup
+  bool viewer_e = false;     // also write OUTPUT.viewer-e.gcode with computed E (preview only)
   double scale = 1.0;        // uniform scale after the units (--scale)
   std::string scale_to_fit;  // "WxDxH" mm: the largest uniform scale that fits (or empty)
   std::string up = "z";      // the file's up axis: z, or y (turned to +z)
   // Called with the placed part's size before any slicing work (the CLI prints it).
   std::function<void(const slicer::Vec3& size_mm)> on_part_size;
+  // Told each phase (reading, checking, slicing, filling layers, planning, G-code); not
+  // owned, null: nobody.
+  slicer::Progress* progress = nullptr;
   std::string machine = "deltawasp-2040-clay";
-  std::string output = "slice.gcode";  // recorded in the report
+  std::string output = "slice.gcode";  // recorded in the report (the CLI: PART's name.gcode)
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
 };
 

@@ -8,8 +8,8 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "cli/sweep_manifest.h"
-#include "cli/sweep_runner.h"
+#include "jobs/sweep_manifest.h"
+#include "jobs/sweep_runner.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -41,7 +41,7 @@ int run(const SweepArgs& a) {
   o.jobs = a.jobs;
   o.shard = parse_shard(a.shard);
   o.previews = !a.no_previews;
-  ProgressBar bar(std::cerr, ::isatty(STDERR_FILENO) != 0);
+  ProgressBar bar(progress_stream(), ::isatty(STDERR_FILENO) != 0);  // nothing with --quiet
   const SweepResult r = run_sweep(spec, source, o, [&bar](const SweepProgress& p) {
     const auto& row = *p.row;
     const std::string status = row.at("status").get<std::string>();

@@ -124,7 +124,8 @@ void add_text_command(CLI::App& app, Action& action) {
   auto a = std::make_shared<TextArgs>();
   CLI::App* sub = app.add_subcommand("text", "lettering -> SVG or pen plotter G-code");
   sub->add_option("string", a->text, "the text; \\n starts a new line")->required();
-  sub->add_option("-o,--output", a->output, "OUT.svg (paths in mm) or OUT.gcode (plotted on --machine)")->required();
+  a->output = "text.svg";
+  sub->add_option("-o,--output", a->output, "OUT.svg (paths in mm) or OUT.gcode (plotted on --machine); default text.svg");
   sub->add_option("--machine", a->machine, "plotter profile for G-code output (default xy-plotter-servo)");
   sub->add_option("--report", a->report, "G-code output: write a JSON report here");
   add_param_flags(sub, text_table(), a->flags);

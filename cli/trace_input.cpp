@@ -78,9 +78,12 @@ slicer::TraceOptions trace_options(const nlohmann::json& v) {
   return o;
 }
 
-TracedImage trace_file(const std::string& path, const slicer::TraceOptions& o) {
+TracedImage trace_file(const std::string& path, const slicer::TraceOptions& o,
+                       slicer::Progress* progress) {
+  slicer::progress_phase(progress, "decoding");
   const slicer::GreyImage image = slicer::decode_image(slicer::read_file(path), path);
   TracedImage t;
+  slicer::progress_phase(progress, "tracing");
   t.trace = slicer::trace_image(image, o);
   std::string greys, counts;
   for (std::size_t k = 0; k < t.trace.levels.size(); ++k) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "slicer/params.h"
+#include "slicer/progress.h"
 #include "slicer/svg_export.h"
 #include "slicer/trace.h"
 
@@ -22,7 +23,9 @@ struct TracedImage {
 };
 
 // Reads, decodes and traces `path`. Throws InputError for files that are no image.
-TracedImage trace_file(const std::string& path, const slicer::TraceOptions& o);
+// `progress` (may be null) is told the phases: decoding, tracing.
+TracedImage trace_file(const std::string& path, const slicer::TraceOptions& o,
+                       slicer::Progress* progress = nullptr);
 
 // The layers as an imported drawing (what `strand plot` lays out).
 slicer::SvgDrawing drawing_of(const std::vector<slicer::SvgLayer>& layers, const slicer::Vec2& size_mm);

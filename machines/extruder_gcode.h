@@ -15,13 +15,32 @@ namespace strand::machines {
 struct ExtruderGcodeInfo {
   std::vector<std::string> header;    // comment lines (without ';')
   std::vector<double> bead_area_mm2;  // per layer, for a volumetric extruder
+  // When the robot reaches each point, one per point (post::time_laps: each lap's real
+  // duration with its corner slowdowns); empty: the pose program's distance / speed t_s.
+  std::vector<double> t_s = {};
 };
 
 // E per mm of path at contact speed `speed_mm_per_s` over a bead of `bead_area_mm2`:
 // v_ext / v for a time-based extruder, bead area / mm3 per E for a volumetric one.
 double e_per_mm(const MachineProfile& m, double speed_mm_per_s, double bead_area_mm2);
 
+// E of a deposit of `length_mm` that the robot runs in `duration_s`: v_ext x duration for a
+// time-based extruder (the screw runs at its fixed feed while the robot deposits, as in the
+// thesis), the bead volume / mm3 per E for a volumetric one (the profile's calibration).
+double deposit_e(const MachineProfile& m, double length_mm, double duration_s,
+                 double bead_area_mm2);
+
+struct ExtruderProgram {
+  std::string gcode;
+  std::vector<double> lap_e;  // E pushed in each lap (index = PosePoint::lap)
+  double e_total = 0.0;
+};
+
 // Precondition: m.robot.enabled. Every E move is at most the profile's extrude_max_length.
+// Runs of deposits share one E move while their E feeds stay within 1 % of the run's first
+// (the move's feed is the run's E over its time, so the time line is kept exactly).
+ExtruderProgram extruder_program(const slicer::PoseProgram& program, const MachineProfile& m,
+                                 const ExtruderGcodeInfo& info);
 std::string write_extruder_gcode(const slicer::PoseProgram& program, const MachineProfile& m,
                                  const ExtruderGcodeInfo& info);
 

@@ -246,7 +246,16 @@ class Writer {
     for (const Move& mv : pieces(whole, plan.n, plan.chords)) deposit_piece(mv);
   }
 
-  void deposit_piece(const Move& mv) {
+  void deposit_piece(Move mv) {
+    // A piece shorter than the output's 0.001 mm steps would be a line without an axis word
+    // ("G1 E0.00003"): its volume goes to the next deposit instead, so the E total is kept.
+    if (!mv.is_arc && unmoved_at_output_precision(mv)) {
+      pending_volume_mm3_ += mv.volume_mm3;
+      at_ = mv.end_mm;
+      return;
+    }
+    mv.volume_mm3 += pending_volume_mm3_;
+    pending_volume_mm3_ = 0.0;
     if (!feature_written_ || mv.feature != feature_) {
       out_ += ";TYPE:" + viewer_role(mv.feature) + "\n;FEATURE:" + to_string(mv.feature) + "\n";
       feature_ = mv.feature;
@@ -283,6 +292,18 @@ class Writer {
                                  ? 1.0
                                  : m_.deposition.mm3_per_e;
     e_step(volume_mm3 / mm3_per_e);
+  }
+
+  // Whether `mv` ends where the last written X, Y and Z words already put the nozzle.
+  bool unmoved_at_output_precision(const Move& mv) const {
+    for (int i = 0; i < 3; ++i) {
+      if (last_[i].size == 0) return false;
+      if (mv.end_mm[i] == last_value_[i]) continue;
+      Word v;
+      v.size = fixed_chars(v.text, mv.end_mm[i], 3);
+      if (!(v == last_[i])) return false;
+    }
+    return true;
   }
 
   // Axis words that changed (X and Y always on arcs), 3 decimals. A value equal to the last
@@ -366,6 +387,7 @@ class Writer {
   bool feature_written_ = false;
   double width_ = -1.0;
   Word last_[3];
+  double pending_volume_mm3_ = 0.0;  // of pieces too short to write, added to the next
   double last_value_[3] = {0.0, 0.0, 0.0};  // the value last_ was formatted from
   std::string feed_;
   slicer::Vec3 at_ = slicer::Vec3::Zero();

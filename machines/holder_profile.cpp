@@ -46,9 +46,12 @@ RobotPrograms read_programs(const nlohmann::json& r) {
   p.sunrise_io_group = s.value("io_group", p.sunrise_io_group);
   p.sunrise_lap_signal = s.value("lap_signal", p.sunrise_lap_signal);
   p.sunrise_csv_dir = s.value("csv_dir", p.sunrise_csv_dir);
+  p.sunrise_tool_template = s.value("tool_template", p.sunrise_tool_template);
+  p.sunrise_tool_frame = s.value("tool_frame", p.sunrise_tool_frame);
+  p.sunrise_nozzle_frame = s.value("nozzle_frame", p.sunrise_nozzle_frame);
   const auto k = r.value("krl", nlohmann::json::object());
-  p.krl_tool_index = k.value("tool_index", p.krl_tool_index);
-  p.krl_base_index = k.value("base_index", p.krl_base_index);
+  p.krl_tool_data = k.value("tool_data", p.krl_tool_data);
+  p.krl_base_data = k.value("base_data", p.krl_base_data);
   p.krl_lap_output = k.value("lap_output", p.krl_lap_output);
   p.krl_points_per_module = k.value("points_per_module", p.krl_points_per_module);
   p.sunrise_ready_signal = s.value("ready_signal", p.sunrise_ready_signal);
@@ -62,6 +65,8 @@ RobotPrograms read_programs(const nlohmann::json& r) {
   p.rapid_wobj = a.value("wobj", p.rapid_wobj);
   p.rapid_lap_signal = a.value("lap_signal", p.rapid_lap_signal);
   p.rapid_ready_signal = a.value("ready_signal", p.rapid_ready_signal);
+  p.rapid_tool_on_controller = a.value("tool_on_controller", p.rapid_tool_on_controller);
+  p.rapid_wobj_on_controller = a.value("wobj_on_controller", p.rapid_wobj_on_controller);
   return p;
 }
 
@@ -79,7 +84,53 @@ RobotMotionSetup read_motion(const nlohmann::json& r) {
   const auto load = r.value("load", nlohmann::json::object());
   m.load_mass_kg = load.value("mass_kg", m.load_mass_kg);
   m.load_cog_mm = vec3_or(load, "cog_mm", m.load_cog_mm);
+  if (r.contains("acceleration_mm_per_s2"))
+    m.path_acceleration_mm_per_s2 = r.at("acceleration_mm_per_s2").get<double>();
   return m;
+}
+
+// Controller data the programs name: KRL indices are whole numbers, Sunrise names are checked
+// as the Java program uses them, the tool and its frame come together; the former KRL index
+// keys (never used) are refused so that nobody relies on them.
+void check_controller_data(const nlohmann::json& r, const RobotCell& c, const std::string& where,
+                           std::vector<std::string>& problems) {
+  const auto k = r.value("krl", nlohmann::json::object());
+  for (const char* key : {"tool_data", "base_data"}) {
+    if (k.contains(key) && k.at(key).get<double>() != std::floor(k.at(key).get<double>()))
+      problems.push_back(where + ".krl." + key + " = " + k.at(key).dump() +
+                         ": must be a whole number (the index into " +
+                         (std::string(key) == "tool_data" ? "TOOL_DATA" : "BASE_DATA") + ")");
+  }
+  for (const auto& [old_key, new_key] : {std::pair{"tool_index", "tool_data"},
+                                         std::pair{"base_index", "base_data"}}) {
+    if (k.contains(old_key))
+      problems.push_back(where + ".krl." + old_key + ": no longer read; set robot.krl." +
+                         new_key + " to make the program use the controller's " +
+                         (std::string(new_key) == "tool_data" ? "TOOL_DATA" : "BASE_DATA") +
+                         " (otherwise it uses the profile's frames in the .dat)");
+  }
+  const RobotPrograms& p = c.programs;
+  if (!p.sunrise_tool_template.empty()) {
+    try {
+      require_sunrise_name(where + ".sunrise.tool_template", p.sunrise_tool_template);
+    } catch (const InputError& e) {
+      problems.push_back(e.what());
+    }
+  }
+  for (const auto& [key, value] : {std::pair{"tool_frame", p.sunrise_tool_frame},
+                                   std::pair{"nozzle_frame", p.sunrise_nozzle_frame}}) {
+    if (value.empty()) continue;
+    try {
+      require_sunrise_frame_path(where + ".sunrise." + key, value);
+    } catch (const InputError& e) {
+      problems.push_back(e.what());
+    }
+  }
+  if (p.sunrise_tool_template.empty() != p.sunrise_tool_frame.empty()) {
+    problems.push_back(where + (p.sunrise_tool_frame.empty() ? ".sunrise.tool_frame" : ".sunrise.tool_template") +
+                       ": missing (tool_template and tool_frame go together: the template and "
+                       "the cylinder's frame in it)");
+  }
 }
 
 }  // namespace
@@ -151,6 +202,12 @@ RobotCell read_robot_cell(const nlohmann::json& j, const std::string& origin,
   }
   c.mount_mm = r.value("mount_mm", c.mount_mm);
   c.mount_rotation_deg = r.value("mount_rotation_deg", c.mount_rotation_deg);
+  if (r.contains("nozzle_cone")) {
+    const auto& cone = r.at("nozzle_cone");
+    c.nozzle_cone.half_angle_deg = cone.value("half_angle_deg", c.nozzle_cone.half_angle_deg);
+    c.nozzle_cone.length_mm = cone.value("length_mm", c.nozzle_cone.length_mm);
+    c.nozzle_cone.tip_radius_mm = cone.value("tip_radius_mm", c.nozzle_cone.tip_radius_mm);
+  }
   c.extruder = read_extruder(j.at("extruder"));
   c.programs = read_programs(r);
   c.motion = read_motion(r);
@@ -197,7 +254,32 @@ RobotCell read_robot_cell(const nlohmann::json& j, const std::string& origin,
   }
   if (c.programs.rapid_tool == c.programs.rapid_wobj)
     problems.push_back(where + ".rapid.wobj: must differ from rapid.tool");
+  check_controller_data(r, c, where, problems);
+  if (c.controller == RobotController::Abb && c.motion.path_acceleration_mm_per_s2 &&
+      *c.motion.path_acceleration_mm_per_s2 < 100.0) {
+    problems.push_back(where + ".acceleration_mm_per_s2 = " +
+                       r.at("acceleration_mm_per_s2").dump() +
+                       ": must be >= 100 on an ABB arm (PathAccLim takes at least 0.1 m/s^2)");
+  }
+  // A URScript movel commands its acceleration: one value for the program and the timing.
+  if (c.controller == RobotController::UniversalRobots && c.motion.path_acceleration_mm_per_s2) {
+    const auto u = r.value("urscript", nlohmann::json::object());
+    if (!u.contains("acceleration_mm_per_s2")) {
+      c.programs.ur_acceleration_mm_per_s2 = *c.motion.path_acceleration_mm_per_s2;
+    } else if (c.programs.ur_acceleration_mm_per_s2 != *c.motion.path_acceleration_mm_per_s2) {
+      problems.push_back(where +
+                         ".acceleration_mm_per_s2: differs from robot.urscript.acceleration_mm_"
+                         "per_s2 (the movel acceleration); give one of them");
+    }
+  }
   return c;
+}
+
+double corner_acceleration_mm_per_s2(const RobotCell& cell) {
+  if (cell.motion.path_acceleration_mm_per_s2) return *cell.motion.path_acceleration_mm_per_s2;
+  if (cell.controller == RobotController::UniversalRobots)
+    return cell.programs.ur_acceleration_mm_per_s2;
+  return kDefaultPathAccelerationMmPerS2;
 }
 
 RotaryAxis read_rotary_axis(const nlohmann::json& j, const std::string& origin,

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "slicer/geometry.h"
+#include "slicer/mesh_collision.h"
 
 namespace strand::machines {
 
@@ -32,8 +33,17 @@ struct RobotPrograms {
   std::string sunrise_io_group = "ExtruderIO";  // Sunrise I/O group class with the lap signal
   std::string sunrise_lap_signal = "LapStart";  // its boolean output set at each lap start
   std::string sunrise_csv_dir = "C:/KRC/ROBOTER/UserFiles";  // where the CSV is copied
-  int krl_tool_index = 1;            // TOOL_DATA[n]: the workpiece frame on the flange
-  int krl_base_index = 1;            // BASE_DATA[n]: the fixed nozzle (external TCP)
+  // Sunrise project data instead of the profile's values: the workpiece as a tool template
+  // (its calibrated frames and load data) with the frame of the cylinder in it, and the fixed
+  // nozzle tip as a frame of the application data; empty = the profile's values.
+  std::string sunrise_tool_template;  // createFromTemplate(...), attached to the flange
+  std::string sunrise_tool_frame;     // the cylinder frame in the template, "/Cylinder"
+  std::string sunrise_nozzle_frame;   // getApplicationData().getFrame(...), "/Nozzle"
+  // Tool and base from the controller's calibrated data instead of the profile's values:
+  // $TOOL = TOOL_DATA[n] (the workpiece frame on the flange, with $LOAD = LOAD_DATA[n]) and
+  // $BASE = BASE_DATA[m] (the fixed nozzle, external TCP); 0 = the profile's frames in the .dat.
+  int krl_tool_data = 0;
+  int krl_base_data = 0;
   int krl_lap_output = 1;            // $OUT[n] pulsed at each lap start
   int krl_points_per_module = 2000;  // LIN points per sub-program
   // Two-way handshake: the robot waits for the extruder's ready level before each lap.
@@ -50,6 +60,10 @@ struct RobotPrograms {
   std::string rapid_wobj = "wobjWorkpiece";
   std::string rapid_lap_signal = "doLapStart";
   std::string rapid_ready_signal;
+  // The tool / work object is PERS data on the controller (calibrated there, in a system
+  // module): the module uses the name without declaring it.
+  bool rapid_tool_on_controller = false;
+  bool rapid_wobj_on_controller = false;
 };
 
 // Where the robot program starts and ends, and what it carries.
@@ -61,7 +75,14 @@ struct RobotMotionSetup {
   int ptp_velocity_percent = 10;    // of each axis' maximum
   double load_mass_kg = 0.0;        // the workpiece and its adapter
   Vec3 load_cog_mm = Vec3::Zero();  // in the flange frame
+  // Path acceleration of the moved frame, mm/s^2: commanded by the programs when given
+  // ($ACC.CP, setCartAcceleration, movel a, PathAccLim) and used to time laps with their
+  // corner slowdowns (corner_acceleration_mm_per_s2).
+  std::optional<double> path_acceleration_mm_per_s2;
 };
+
+// The acceleration the lap timing assumes when the profile commands none, mm/s^2.
+inline constexpr double kDefaultPathAccelerationMmPerS2 = 500.0;
 
 // Which controller's programs a cell gets beside the pose CSV.
 enum class RobotController { Kuka, UniversalRobots, Abb };
@@ -84,6 +105,8 @@ struct RobotCell {
   Vec3 substrate_axis = Vec3(1.0, 0.0, 0.0);  // cylinder axis in the base frame (flange z)
   double mount_mm = 40.0;           // flange face to the cylinder's mounted end, along flange z
   double mount_rotation_deg = 0.0;  // cylinder u = 0 line about flange z from flange +x
+  // The nozzle's outside near the tip, checked against a robot-held substrate mesh.
+  slicer::NozzleCone nozzle_cone;
   ExtruderSetup extruder;
   RobotPrograms programs;
   RobotMotionSetup motion;
@@ -98,6 +121,10 @@ struct RotaryAxis {
   double lift_mm = 2.0;               // nozzle lift for travels
   bool inverse_time = false;          // G93 feeds (RepRapFirmware 3.5+ only)
 };
+
+// The path acceleration that times the laps: robot.acceleration_mm_per_s2, or what the
+// URScript program commands (robot.urscript.acceleration_mm_per_s2), or the default.
+double corner_acceleration_mm_per_s2(const RobotCell& cell);
 
 // Reads j["robot"], j["extruder"] and j["rotary"] (schema already checked) and the kinematics
 // type; problems are appended in the profile loader's format.

@@ -112,8 +112,19 @@ KrlProgram write_krl(const slicer::PoseProgram& p, const MachineProfile& m, cons
   const RobotMotionSetup& mo = c.motion;
   s += "  BAS(#INITMOV, 0)\n  BAS(#VEL_PTP, " + std::to_string(mo.ptp_velocity_percent) +
        ")\n  BAS(#ACC_PTP, " + std::to_string(mo.ptp_velocity_percent) + ")\n";
-  s += "  $TOOL = workpiece_on_flange\n  $BASE = nozzle_in_world\n";
-  if (mo.load_mass_kg > 0.0) {
+  const RobotPrograms& pr = c.programs;
+  const std::string tool_n = std::to_string(pr.krl_tool_data);
+  // Tool and base from the controller's calibrated data when the profile names them (plain
+  // assignments: BAS(#TOOL) would also need the KSS data lists of the inline forms).
+  s += pr.krl_tool_data > 0 ? "  $TOOL = TOOL_DATA[" + tool_n +
+                                  "] ; the workpiece on the flange, calibrated on the controller\n"
+                            : std::string("  $TOOL = workpiece_on_flange\n");
+  s += pr.krl_base_data > 0 ? "  $BASE = BASE_DATA[" + std::to_string(pr.krl_base_data) +
+                                  "] ; the nozzle (external TCP), calibrated on the controller\n"
+                            : std::string("  $BASE = nozzle_in_world\n");
+  if (pr.krl_tool_data > 0) {
+    s += "  $LOAD = LOAD_DATA[" + tool_n + "] ; the load determined with tool " + tool_n + "\n";
+  } else if (mo.load_mass_kg > 0.0) {
     const Vec3& g = mo.load_cog_mm;
     s += "  $LOAD = {M " + fmt_fixed(mo.load_mass_kg, 3) + ", CM {X " + fmt_fixed(g.x(), 3) +
          ", Y " + fmt_fixed(g.y(), 3) + ", Z " + fmt_fixed(g.z(), 3) +
@@ -122,6 +133,10 @@ KrlProgram write_krl(const slicer::PoseProgram& p, const MachineProfile& m, cons
   s += "  $IPO_MODE = #TCP ; external TCP: the nozzle is fixed, the robot carries the workpiece; "
        "LIN frames are the nozzle in the workpiece frame\n";
   s += "  $APO.CDIS = " + fmt_fixed(blend_mm, 3) + "\n  $ADVANCE = 3\n";
+  if (mo.path_acceleration_mm_per_s2) {
+    s += "  $ACC.CP = " + fmt_fixed(*mo.path_acceleration_mm_per_s2 / 1000.0, 6) +
+         " ; m/s^2, the path acceleration the lap timing assumes\n";
+  }
   const auto axes = [](const Joints& q, const std::string& what) {
     std::string t = "  PTP {E6AXIS: A1 " + fmt_fixed(slicer::rad_to_deg(q[0]), 4);
     for (int i = 1; i < 6; ++i)
@@ -185,6 +200,14 @@ KrlProgram write_krl(const slicer::PoseProgram& p, const MachineProfile& m, cons
     s += "END\n";
   }
   out.dat = "&ACCESS RVP\nDEFDAT " + module + "\n";
+  if (pr.krl_tool_data > 0 || pr.krl_base_data > 0) {
+    out.dat += "; the program uses" +
+               (pr.krl_tool_data > 0 ? " TOOL_DATA[" + tool_n + "]" : std::string()) +
+               (pr.krl_tool_data > 0 && pr.krl_base_data > 0 ? " and" : "") +
+               (pr.krl_base_data > 0 ? " BASE_DATA[" + std::to_string(pr.krl_base_data) + "]"
+                                     : std::string()) +
+               " of the controller; the profile's values are below for comparison\n";
+  }
   out.dat +=
       "; $TOOL: the workpiece (cylinder) frame on the flange; $BASE: the nozzle tip (external TCP) "
       "in the world\n";

@@ -1,6 +1,7 @@
 // KUKA KRL program of a robot cell for a KR C4 (.src + .dat): the workpiece is carried by the
 // robot and the nozzle is an external TCP ($IPO_MODE = #TCP, $TOOL = workpiece on the flange,
-// $BASE = nozzle), so each LIN point is the nozzle's pose in the workpiece frame (X, Y, Z in mm,
+// $BASE = nozzle: the profile's frames in the .dat, or TOOL_DATA[n] / BASE_DATA[m] when the
+// profile names the controller's, robot.krl.tool_data / base_data), so each LIN point is the nozzle's pose in the workpiece frame (X, Y, Z in mm,
 // A, B, C in degrees) and $VEL.CP (m/s) is the speed of the contact over the workpiece. The
 // program starts with a PTP to the first pose's axis values (from the arm's inverse
 // kinematics). Each lap is a local sub-program, split further when longer than the profile's

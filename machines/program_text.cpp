@@ -128,6 +128,28 @@ bool is_plain_identifier(std::string_view text, std::size_t max_length) {
                      [&](char c) { return letter(c) || (c >= '0' && c <= '9'); });
 }
 
+void require_sunrise_name(const std::string& key, const std::string& value) {
+  if (!is_plain_identifier(value, 64)) {
+    throw InputError(key + " = \"" + shown(value) +
+                     "\": must be a Sunrise object name (letters, digits and _, not starting "
+                     "with a digit, at most 64 characters)");
+  }
+}
+
+void require_sunrise_frame_path(const std::string& key, const std::string& value) {
+  bool ok = value.size() >= 2 && value.size() <= 200 && value.front() == '/';
+  for (std::size_t at = 1; ok && at <= value.size();) {
+    const std::size_t slash = std::min(value.find('/', at), value.size());
+    ok = is_plain_identifier(std::string_view(value).substr(at, slash - at), 64);
+    at = slash + 1;
+  }
+  if (!ok) {
+    throw InputError(key + " = \"" + shown(value) +
+                     "\": must be a frame path such as \"/Nozzle\" or \"/Cell/Nozzle\" "
+                     "(names of letters, digits and _ after each /)");
+  }
+}
+
 void require_java_identifier(const std::string& key, const std::string& value) {
   static const std::string_view kReserved[] = {
       "abstract", "assert", "boolean",    "break",     "byte",       "case",      "catch",

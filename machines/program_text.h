@@ -33,6 +33,13 @@ bool is_plain_identifier(std::string_view text, std::size_t max_length);
 // identifier of at most 64 characters that is not a Java keyword or literal.
 void require_java_identifier(const std::string& key, const std::string& value);
 
+// Sunrise project data named in the profile: an object template's name is a plain
+// identifier of at most 64 characters; a frame path is "/" and such names joined by "/"
+// ("/Nozzle", "/Cell/NozzleTip"), at most 200 characters. Both go into the program as string
+// literals. Throw InputError naming `key` otherwise.
+void require_sunrise_name(const std::string& key, const std::string& value);
+void require_sunrise_frame_path(const std::string& key, const std::string& value);
+
 // RAPID (ABB): an identifier starts with a letter, then letters, digits and _, at most 32
 // characters, and is not a RAPID reserved word (compared without case). Throws InputError
 // naming `key` otherwise.

@@ -86,16 +86,29 @@ RapidProgram write_rapid(const slicer::PoseProgram& p, const MachineProfile& m,
   s = "MODULE " + module + "\n";
   for (const auto& h : header) s += "  ! " + program_comment_text(h) + "\n";
   // The stationary tool: the nozzle tip in the world (= robot base) frame, z along the flow.
-  s += "  ! " + tool + ": the nozzle (stationary tool); " + wobj +
-       ": the workpiece on the flange (robot-held work object). Calibration values of the "
-       "profile.\n";
+  const bool tool_there = pr.rapid_tool_on_controller, wobj_there = pr.rapid_wobj_on_controller;
+  if (!tool_there || !wobj_there) {
+    s += "  ! " + tool + ": the nozzle (stationary tool); " + wobj +
+         ": the workpiece on the flange (robot-held work object). Calibration values of the "
+         "profile.\n";
+  }
+  // Data calibrated on the controller (a PERS in a system module) is used, not declared.
+  if (tool_there || wobj_there) {
+    s += "  ! " + std::string(tool_there ? tool : "") + (tool_there && wobj_there ? " and " : "") +
+         (wobj_there ? wobj : "") +
+         ": PERS data calibrated on the controller (declared in a system module, not here).\n";
+  }
   const Vec3 cog = mo.load_cog_mm;
-  s += "  PERS tooldata " + tool + " := [FALSE, [" + pos_text(c.nozzle_tip_mm) + ", " +
-       quaternion_text(nozzle) + "], [" + fmt_fixed(std::max(mo.load_mass_kg, 0.001), 3) + ", " +
-       pos_text(cog) + ", [1, 0, 0, 0], 0, 0, 0]];\n";
+  if (!tool_there) {
+    s += "  PERS tooldata " + tool + " := [FALSE, [" + pos_text(c.nozzle_tip_mm) + ", " +
+         quaternion_text(nozzle) + "], [" + fmt_fixed(std::max(mo.load_mass_kg, 0.001), 3) +
+         ", " + pos_text(cog) + ", [1, 0, 0, 0], 0, 0, 0]];\n";
+  }
   const Eigen::Isometry3d wf = workpiece_in_flange(c);
-  s += "  PERS wobjdata " + wobj + " := [TRUE, TRUE, \"\", [" + pos_text(wf.translation()) + ", " +
-       quaternion_text(wf.linear()) + "], [[0, 0, 0], [1, 0, 0, 0]]];\n";
+  if (!wobj_there) {
+    s += "  PERS wobjdata " + wobj + " := [TRUE, TRUE, \"\", [" + pos_text(wf.translation()) +
+         ", " + quaternion_text(wf.linear()) + "], [[0, 0, 0], [1, 0, 0, 0]]];\n";
+  }
   const double zb = std::max(blend_mm, 0.001);
   s += "  CONST zonedata strandZone := [FALSE, " + fmt_fixed(zb, 3) + ", " +
        fmt_fixed(1.5 * zb, 3) + ", " + fmt_fixed(1.5 * zb, 3) + ", 0.15, " +
@@ -160,6 +173,11 @@ RapidProgram write_rapid(const slicer::PoseProgram& p, const MachineProfile& m,
   s += "\n  PROC main()\n";
   s += "    TPWrite " + rapid_string_literal("Strand pose program " + csv_name) + ";\n";
   s += "    ConfL\\On;\n";
+  if (mo.path_acceleration_mm_per_s2) {
+    const std::string a = fmt_fixed(*mo.path_acceleration_mm_per_s2 / 1000.0, 3);
+    s += "    ! the path acceleration the lap timing assumes (m/s^2)\n    PathAccLim TRUE\\AccMax:=" +
+         a + ", TRUE\\DecelMax:=" + a + ";\n";
+  }
   if (mo.home_joints_deg) s += "    ! home\n    MoveAbsJ strandHome, strandPtp, fine" + tw + "\n";
   s += "    ! approach\n    MoveAbsJ strandStart, strandPtp, fine" + tw + "\n";
   s += "    ! onto the first pose\n    MoveL " + robtarget(pts.front(), solution(0)) + ", " +

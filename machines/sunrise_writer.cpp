@@ -7,6 +7,7 @@
 #include "machines/extruder_gcode.h"
 #include "machines/gcode_format.h"
 #include "machines/joint_analysis.h"
+#include "machines/krl_writer.h"
 #include "machines/program_text.h"
 #include "machines/workpiece_pose.h"
 #include "slicer/input_error.h"
@@ -25,22 +26,10 @@ const char* const kBody = R"java(
 
   private Tool cylinder;
   private final List<ObjectFrame> contactFrames = new ArrayList<ObjectFrame>();
-
+__NOZZLE_FIELD__
   @Override
   public void initialize() {
-    // The cylinder on the flange: its frame sits MOUNT_MM along the flange z axis, turned
-    // MOUNT_ROTATION_DEG about it; one moved frame per layer on that layer's contact radius.
-    cylinder = new Tool("StrandCylinder");
-    cylinder.getLoadData().setMass(LOAD_MASS_KG);
-    cylinder.getLoadData().setCenterOfMass(LOAD_COG_MM[0], LOAD_COG_MM[1], LOAD_COG_MM[2]);
-    double rot = Math.toRadians(MOUNT_ROTATION_DEG);
-    for (int k = 0; k < CONTACT_RADIUS_MM.length; ++k) {
-      double r = CONTACT_RADIUS_MM[k];
-      contactFrames.add(cylinder.addChildFrame("Contact" + k, Transformation.ofRad(
-          r * Math.cos(rot), r * Math.sin(rot), MOUNT_MM, rot, 0.0, 0.0)));
-    }
-    cylinder.attachTo(robot.getFlange());
-  }
+__INITIALIZE__  }
 
   @Override
   public void run() {
@@ -71,7 +60,7 @@ const char* const kBody = R"java(
         waitForExtruder(lap, level);
         extruder.set__LAP_SIGNAL__(level);  // the extruder's M226 waits for this level
       }
-      motions.add(lin(target(r, 0.0)).setCartVelocity(r[SPEED]).setBlendingCart(BLEND_MM));
+      motions.add(lin(target(r, 0.0)).setCartVelocity(r[SPEED]).setBlendingCart(BLEND_MM)__CART_ACCELERATION__);
       if (motions.size() >= BATCH) flush(moved, motions, false);
     }
     flush(moved, motions, true);
@@ -110,7 +99,7 @@ __WAIT_FOR_EXTRUDER__  }
         {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
         {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
     double radius = CONTACT_RADIUS_MM[(int) r[LAYER]];
-    // A, B, C (Z, Y', X''): C is solved from A, so the angles give back m everywhere; at
+__NOZZLE_RELATIVE__    // A, B, C (Z, Y', X''): C is solved from A, so the angles give back m everywhere; at
     // B = +-90 deg (gimbal lock) only A -+ C is defined and C = 0.
     double cosB = Math.hypot(m[0][0], m[1][0]);
     double b = Math.atan2(-m[2][0], cosB);
@@ -123,11 +112,7 @@ __WAIT_FOR_EXTRUDER__  }
       double sa = Math.sin(a), ca = Math.cos(a);
       c = Math.atan2(sa * m[0][2] - ca * m[1][2], ca * m[1][1] - sa * m[0][1]);
     }
-    return new Frame(World.Current.getRootFrame(),
-        r[X] + radius * m[0][0] + awayMm * NOZZLE_AXIS[0],
-        r[Y] + radius * m[1][0] + awayMm * NOZZLE_AXIS[1],
-        r[Z] + radius * m[2][0] + awayMm * NOZZLE_AXIS[2], a, b, c);
-  }
+__RETURN_TARGET__  }
 
   private static List<double[]> readCsv(String path) {
     List<double[]> rows = new ArrayList<double[]>();
@@ -168,6 +153,62 @@ std::string replace_all(std::string s, const std::string& from, const std::strin
   }
   return s;
 }
+
+// The default texts of the body's placeholders: the profile's tool and world targets.
+const char* const kInitializeProfileTool = R"java(    // The cylinder on the flange: its frame sits MOUNT_MM along the flange z axis, turned
+    // MOUNT_ROTATION_DEG about it; one moved frame per layer on that layer's contact radius.
+    cylinder = new Tool("StrandCylinder");
+    cylinder.getLoadData().setMass(LOAD_MASS_KG);
+    cylinder.getLoadData().setCenterOfMass(LOAD_COG_MM[0], LOAD_COG_MM[1], LOAD_COG_MM[2]);
+    double rot = Math.toRadians(MOUNT_ROTATION_DEG);
+    for (int k = 0; k < CONTACT_RADIUS_MM.length; ++k) {
+      double r = CONTACT_RADIUS_MM[k];
+      contactFrames.add(cylinder.addChildFrame("Contact" + k, Transformation.ofRad(
+          r * Math.cos(rot), r * Math.sin(rot), MOUNT_MM, rot, 0.0, 0.0)));
+    }
+    cylinder.attachTo(robot.getFlange());
+)java";
+
+// robot.sunrise.tool_template / tool_frame: the cylinder as calibrated in the project.
+const char* const kInitializeTemplateTool = R"java(    // The cylinder as calibrated in the project: the tool template TOOL_TEMPLATE (with its
+    // load data) and in it TOOL_FRAME, on the cylinder's axis at its mounted end, z along the
+    // axis, x towards the u = 0 line; one moved frame per layer on that layer's contact radius.
+    cylinder = getApplicationData().createFromTemplate(TOOL_TEMPLATE);
+    ObjectFrame axis = cylinder.getFrame(TOOL_FRAME);
+    for (int k = 0; k < CONTACT_RADIUS_MM.length; ++k) {
+      contactFrames.add(cylinder.addChildFrame("Contact" + k, axis,
+          Transformation.ofRad(CONTACT_RADIUS_MM[k], 0.0, 0.0, 0.0, 0.0, 0.0)));
+    }
+    cylinder.attachTo(robot.getFlange());
+)java";
+
+const char* const kReturnWorldTarget = R"java(    return new Frame(World.Current.getRootFrame(),
+        r[X] + radius * m[0][0] + awayMm * NOZZLE_AXIS[0],
+        r[Y] + radius * m[1][0] + awayMm * NOZZLE_AXIS[1],
+        r[Z] + radius * m[2][0] + awayMm * NOZZLE_AXIS[2], a, b, c);
+)java";
+
+// robot.sunrise.nozzle_frame: targets relative to the calibrated nozzle frame. The rows are
+// in the robot base frame, planned with the profile's nozzle N (tip, rotation): relative to
+// it a target is N^T (p - tip) and N^T m, which the controller puts on its own frame.
+const char* const kNozzleRelative = R"java(    // Relative to the nozzle frame NOZZLE_FRAME (the profile's nozzle: NOZZLE_TIP_MM and
+    // NOZZLE_ROTATION, whose columns are its x, y, z axes in the robot base frame).
+    double[] fromTip = {r[X] + radius * m[0][0] + awayMm * NOZZLE_AXIS[0] - NOZZLE_TIP_MM[0],
+        r[Y] + radius * m[1][0] + awayMm * NOZZLE_AXIS[1] - NOZZLE_TIP_MM[1],
+        r[Z] + radius * m[2][0] + awayMm * NOZZLE_AXIS[2] - NOZZLE_TIP_MM[2]};
+    double[] p = new double[3];
+    double[][] inNozzle = new double[3][3];
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        p[i] += NOZZLE_ROTATION[j][i] * fromTip[j];
+        for (int k = 0; k < 3; ++k) inNozzle[i][j] += NOZZLE_ROTATION[k][i] * m[k][j];
+      }
+    }
+    m = inNozzle;
+)java";
+
+const char* const kReturnNozzleTarget = R"java(    return new Frame(nozzle, p[0], p[1], p[2], a, b, c);
+)java";
 
 std::string radii(const slicer::PoseProgram& p, const MachineProfile&) {
   std::string out;
@@ -231,6 +272,12 @@ std::string write_sunrise_java(const slicer::PoseProgram& p, const MachineProfil
   require_java_identifier("robot.sunrise.lap_signal", c.programs.sunrise_lap_signal);
   if (!c.programs.sunrise_ready_signal.empty())
     require_java_identifier("robot.sunrise.ready_signal", c.programs.sunrise_ready_signal);
+  if (!c.programs.sunrise_tool_template.empty()) {
+    require_sunrise_name("robot.sunrise.tool_template", c.programs.sunrise_tool_template);
+    require_sunrise_frame_path("robot.sunrise.tool_frame", c.programs.sunrise_tool_frame);
+  }
+  if (!c.programs.sunrise_nozzle_frame.empty())
+    require_sunrise_frame_path("robot.sunrise.nozzle_frame", c.programs.sunrise_nozzle_frame);
   const std::string cls = java_class_name(base);
   if (c.programs.sunrise_io_group + "IOGroup" == cls) {
     throw InputError("output = " + base + ": its class name " + cls +
@@ -300,6 +347,28 @@ import com.kuka.roboticsAPI.motionModel.MotionBatch;
   out += "  private static final double V_CART_MM_S = " + fmt_fixed(c.v_cart_mm_per_s, 3) +
          ";  // deposits (rows carry their speed)\n";
   out += "  private static final double BLEND_MM = 0.01;\n";
+  if (mo.path_acceleration_mm_per_s2) {
+    out += "  private static final double CART_ACCELERATION_MM_S2 = " +
+           fmt_fixed(*mo.path_acceleration_mm_per_s2, 3) + ";  // as the lap timing assumes\n";
+  }
+  // Project data named in the profile: the workpiece tool template and the nozzle frame.
+  if (!c.programs.sunrise_tool_template.empty()) {
+    out += "  private static final String TOOL_TEMPLATE = " +
+           java_string_literal(c.programs.sunrise_tool_template, "robot.sunrise.tool_template") +
+           ";\n";
+    out += "  private static final String TOOL_FRAME = " +
+           java_string_literal(c.programs.sunrise_tool_frame, "robot.sunrise.tool_frame") + ";\n";
+  }
+  if (!c.programs.sunrise_nozzle_frame.empty()) {
+    const Eigen::Matrix3d n = nozzle_frame_rotation(c);
+    out += "  private static final String NOZZLE_FRAME = " +
+           java_string_literal(c.programs.sunrise_nozzle_frame, "robot.sunrise.nozzle_frame") +
+           ";\n";
+    out += "  private static final double[] NOZZLE_TIP_MM = {" + numbers(c.nozzle_tip_mm, 3, 4) +
+           "};\n";
+    out += "  private static final double[][] NOZZLE_ROTATION = {{" + numbers(n.row(0), 3, 9) +
+           "}, {" + numbers(n.row(1), 3, 9) + "}, {" + numbers(n.row(2), 3, 9) + "}};\n";
+  }
   out += "  private static final double MOUNT_MM = " + fmt_fixed(c.mount_mm, 3) + ";\n";
   out +=
       "  private static final double MOUNT_ROTATION_DEG = " + fmt_fixed(c.mount_rotation_deg, 3) +
@@ -328,6 +397,23 @@ import com.kuka.roboticsAPI.motionModel.MotionBatch;
                 "        throw new IllegalStateException(e);\n"
                 "      }\n"
                 "    }\n");
+  const RobotPrograms& pr = c.programs;
+  const bool tool_template = !pr.sunrise_tool_template.empty();
+  const bool nozzle_frame = !pr.sunrise_nozzle_frame.empty();
+  out = replace_all(out, "__INITIALIZE__",
+                    std::string(tool_template ? kInitializeTemplateTool : kInitializeProfileTool) +
+                        (nozzle_frame ? "    nozzle = getApplicationData().getFrame(NOZZLE_FRAME);\n"
+                                      : ""));
+  out = replace_all(out, "__NOZZLE_FIELD__",
+                    nozzle_frame ? "  private ObjectFrame nozzle;  // the calibrated nozzle tip\n"
+                                 : "");
+  out = replace_all(out, "__NOZZLE_RELATIVE__", nozzle_frame ? kNozzleRelative : "");
+  out = replace_all(out, "__RETURN_TARGET__",
+                    nozzle_frame ? kReturnNozzleTarget : kReturnWorldTarget);
+  out = replace_all(out, "__CART_ACCELERATION__",
+                    mo.path_acceleration_mm_per_s2
+                        ? ".setCartAcceleration(CART_ACCELERATION_MM_S2)"
+                        : "");
   out = replace_all(out, "__IO_GROUP__", c.programs.sunrise_io_group);
   return replace_all(out, "__LAP_SIGNAL__", c.programs.sunrise_lap_signal);
 }

@@ -3,6 +3,9 @@
 // lin motions at setCartVelocity(v_cart), setting an I/O output at each lap start for the
 // extruder's handshake. The moved frame sits on the layer's contact radius, so its speed is
 // the contact speed (a turn about the cylinder axis moves every point of one radius alike).
+// With robot.sunrise.tool_template / tool_frame the cylinder is the project's calibrated tool
+// template, with robot.sunrise.nozzle_frame the targets are relative to the project's nozzle
+// frame; otherwise both come from the profile.
 #pragma once
 
 #include <string>

@@ -128,6 +128,7 @@ slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p) {
     regions.push_back(f.regions);
     strands.push_back(f.pattern_strands);
     t.layers.push_back(std::move(layer));
+    slicer::progress_step(part.progress, k + 1);
   }
   const double area = slicer::bead_area_mm2(p.nozzle_mm, p.layer_height_mm);
   const double sliced_volume = region_area * p.layer_height_mm;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "patterns/region_pattern.h"
+#include "slicer/progress.h"
 #include "slicer/region.h"
 #include "slicer/toolpath.h"
 
@@ -30,6 +31,7 @@ struct PartFill {
   slicer::Vec2 half_extent_mm = slicer::Vec2::Zero();
   double volume_mm3 = 0.0;  // the part's volume, for the deposited porosity
   int perimeters = 0;
+  slicer::Progress* progress = nullptr;  // told each filled layer (steps of the current phase)
 };
 
 // The part's toolpath (generator "slice"); derived: layers, regions and pattern strands per

@@ -4,7 +4,8 @@
 # OUT/<sweep name>/ (G-code per point, manifest, index.html contact sheet). Jobs on a curved
 # substrate write what their machine takes (the job's "output" extension: a robot cell's pose
 # CSV with its .java, .src, .dat and .extruder.gcode, or a rotary printer's 4-axis G-code),
-# checked on their cylinder.
+# checked on their cylinder; a robot-held mesh's job (tetrachiral-sphere-cap-robot.json) also
+# writes the record of its mesh beside the CSV, which its check and preview read.
 # Usage: samples/run_demo.sh path/to/strand OUT
 set -euo pipefail
 strand="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
@@ -22,10 +23,12 @@ for job in "$samples"/*.json; do
     output="$(sed -n 's/.*"output": *"\([^"]*\)".*/\1/p' "$job")"
     ext="${output##*.}"
     "$strand" job "$job" -o "$name.$ext" --report "$name.json" | tee "$name-summary.txt"
-    # Crossings in (u, v) around the cylinder, poses against the nozzle, reach and joints.
+    # Crossings in (u, v) around the cylinder (or on the mesh's map), poses against the nozzle,
+    # contact points on the offset surfaces, reach and joints.
     "$strand" check "$name.$ext" --machine "$machine" > "$name-check.txt"
     tail -n 1 "$name-check.txt"
-    # Drawn on the workpiece: the cylinder's axis along x, its u = 0 line on top.
+    # Drawn on the workpiece: the cylinder's axis along x, its u = 0 line on top (a mesh:
+    # its outside up, translucent under the poses).
     for view in png html glb; do "$strand" preview "$name.$ext" -o "$name-preview.$view"; done
     continue
   fi

@@ -5,6 +5,8 @@
 #include <OpenMesh/Core/System/config.h>
 #include <potracelib.h>
 
+#include "Model/COM/NMR_DLLInterfaces.h"
+
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
 #include <polyclipping/clipper.hpp>
@@ -31,6 +33,12 @@ std::vector<std::pair<std::string, std::string>> core_library_versions() {
          const std::string v = potrace_version();
          const auto space = v.rfind(' ');
          return space == std::string::npos ? v : v.substr(space + 1);
+       }()},
+      {"lib3mf",
+       [] {
+         DWORD major = 0, minor = 0, micro = 0;
+         NMR::lib3mf_getinterfaceversion(&major, &minor, &micro);
+         return dotted(static_cast<int>(major), static_cast<int>(minor), static_cast<int>(micro));
        }()},
       {"pugixml",
        std::to_string(PUGIXML_VERSION / 1000) + "." + std::to_string(PUGIXML_VERSION % 1000 / 10)},

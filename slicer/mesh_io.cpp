@@ -13,6 +13,7 @@
 
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
+#include "slicer/mesh_3mf.h"
 #include "slicer/mesh_gltf.h"
 #include "slicer/mesh_header.h"
 #include "slicer/units.h"
@@ -108,6 +109,8 @@ Mesh read_mesh_file(const std::string& path) {
   Mesh m;
   if (ext == ".gltf" || ext == ".glb") {
     m = read_gltf(path);
+  } else if (ext == ".3mf") {
+    m = read_3mf(path);
   } else if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".off") {
     if (ext == ".ply") vet_ply_header(path, size);
     vet_finite_vertices(path, ext, size);  // before the OFF check: NaN is named as such
@@ -116,7 +119,7 @@ Mesh read_mesh_file(const std::string& path) {
     m = read_openmesh(path, ext);
   } else {
     throw InputError("mesh = " + path + ": unknown format '" + ext +
-                     "' (allowed: .stl, .obj, .ply, .off, .gltf, .glb)");
+                     "' (allowed: .stl, .obj, .ply, .off, .gltf, .glb, .3mf)");
   }
   check_content(m, path);
   return m;

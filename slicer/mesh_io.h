@@ -1,5 +1,6 @@
 // Reading part and substrate meshes: STL (ASCII and binary), OBJ, PLY and OFF through
-// OpenMesh, glTF and GLB through tinygltf; then units, rotation and placement.
+// OpenMesh, glTF and GLB through tinygltf, 3MF through lib3mf; then units, rotation and
+// placement.
 #pragma once
 
 #include <cstddef>

@@ -270,5 +270,7 @@ TriangleMesh MeshSurface::preview_mesh(double) const { return to_triangle_mesh(i
 const MapDistortion& MeshSurface::distortion() const { return impl_->distortion; }
 const std::string& MeshSurface::uv_source() const { return impl_->uv_source; }
 double MeshSurface::top_z_mm() const { return impl_->top_z; }
+const Mesh& MeshSurface::mesh() const { return impl_->mesh; }
+const std::vector<Vec2>& MeshSurface::vertex_uv() const { return impl_->uv; }
 
 }  // namespace strand::slicer

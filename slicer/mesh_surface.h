@@ -44,6 +44,10 @@ class MeshSurface : public Surface {
   const std::string& uv_source() const;
   // Highest point of the substrate, mm: travels clear it.
   double top_z_mm() const;
+  // The welded mesh the map is defined on, and its (u, v) per vertex in mm (same indices):
+  // for mapping 3D points on the mesh back to pattern coordinates (mesh_substrate.h).
+  const Mesh& mesh() const;
+  const std::vector<Vec2>& vertex_uv() const;
 
   struct Impl;
 

@@ -3,9 +3,9 @@
 
 #include <charconv>
 #include <cmath>
-#include <sstream>
 
 #include "slicer/input_error.h"
+#include "slicer/unit_values.h"
 
 namespace strand::slicer {
 
@@ -29,73 +29,101 @@ bool in_range(const ParamDef& d, double v) {
   return true;
 }
 
-std::optional<double> parse_double(const std::string& s) {
-  std::istringstream in(s);
-  in.imbue(std::locale::classic());
-  double v = 0;
-  in >> v;
-  if (in.fail() || !in.eof()) {
-    // allow trailing spaces
-    std::string rest;
-    if (!in.fail() && (in >> rest, rest.empty())) return v;
-    return std::nullopt;
-  }
-  return v;
+// A value normalised to its def's type, or the rule it breaks (and whether that rule is
+// about units, whose message names the units instead of the table's unit).
+struct Normalised {
+  std::optional<nlohmann::json> value;
+  std::string rule;
+  bool unit_rule = false;
+};
+
+Normalised fail_type(const ParamDef& d) { return {std::nullopt, type_rule(d.type), false}; }
+
+Normalised from_units(const ParamDef& d, const UnitValues& u) {
+  if (!u.unit_problem.empty()) return {std::nullopt, u.unit_problem, true};
+  if (u.malformed) return fail_type(d);
+  return {nlohmann::json(u.values), "", false};
 }
 
-std::optional<std::vector<double>> parse_list(const std::string& s, char sep) {
-  std::vector<double> out;
-  std::string item;
-  std::istringstream in(s);
-  while (std::getline(in, item, sep)) {
-    auto v = parse_double(item);
-    if (!v) return std::nullopt;
-    out.push_back(*v);
-  }
-  if (out.empty()) return std::nullopt;
-  return out;
+// A list element or size element: a number, or a string with one value and its unit.
+Normalised element_of(const ParamDef& d, const nlohmann::json& e) {
+  if (e.is_number()) return {e, "", false};
+  if (!e.is_string()) return fail_type(d);
+  const UnitValues u = parse_quantity(e.get<std::string>(), d.unit);
+  Normalised n = from_units(d, u);
+  if (n.value) n.value = u.values.front();
+  return n;
 }
 
-// Normalises a given JSON value to the def's type; nullopt if it is not of that type.
-std::optional<nlohmann::json> normalise(const ParamDef& d, const nlohmann::json& v) {
+Normalised numbers_of(const ParamDef& d, const nlohmann::json& v, std::size_t size) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& e : v) {
+    Normalised n = element_of(d, e);
+    if (!n.value) return n;
+    out.push_back(*n.value);
+  }
+  if (out.empty() || (size && out.size() != size)) return fail_type(d);
+  return {out, "", false};
+}
+
+Normalised paper_of(const ParamDef& d, const std::string& text) {
+  const auto size = paper_size_mm(text);
+  if (!size) {
+    return {std::nullopt,
+            "unknown paper (known: " + paper_names() +
+                "; portrait, or add landscape: A4 landscape); or a size like 190x270" + d.unit,
+            true};
+  }
+  return {nlohmann::json({(*size)[0], (*size)[1]}), "", false};
+}
+
+// Normalises a given JSON value to the def's type: numbers as they are, text read with its
+// units into the table's unit.
+Normalised normalise(const ParamDef& d, const nlohmann::json& v) {
   switch (d.type) {
     case ParamType::Number:
-      if (v.is_number()) return v;
-      return std::nullopt;
-    case ParamType::Integer:
-      if (v.is_number_integer()) return v;
-      if (v.is_number_float() && std::floor(v.get<double>()) == v.get<double>() &&
-          std::abs(v.get<double>()) < 1e15) {
-        return nlohmann::json(static_cast<long long>(v.get<double>()));
-      }
-      return std::nullopt;
-    case ParamType::Text:
-      if (v.is_string()) return v;
-      return std::nullopt;
-    case ParamType::NumberList:
-      if (v.is_number()) return nlohmann::json::array({v});
+      if (v.is_number()) return {v, "", false};
       if (v.is_string()) {
-        auto l = parse_list(v.get<std::string>(), ',');
-        if (!l) return std::nullopt;
-        return nlohmann::json(*l);
+        Normalised n = from_units(d, parse_quantity(v.get<std::string>(), d.unit));
+        if (n.value) n.value = n.value->front();
+        return n;
       }
-      if (v.is_array() && !v.empty()) {
-        for (const auto& e : v) {
-          if (!e.is_number()) return std::nullopt;
-        }
-        return v;
+      return fail_type(d);
+    case ParamType::Integer: {
+      Normalised n = fail_type(d);
+      if (v.is_number()) {
+        n = {v, "", false};
+      } else if (v.is_string()) {
+        n = from_units(d, parse_quantity(v.get<std::string>(), d.unit));
+        if (n.value) n.value = n.value->front();
       }
-      return std::nullopt;
+      if (!n.value || n.value->is_number_integer()) return n;
+      const double x = n.value->get<double>();
+      if (std::floor(x) == x && std::abs(x) < 1e15) {
+        return {nlohmann::json(static_cast<long long>(x)), "", false};
+      }
+      return fail_type(d);
+    }
+    case ParamType::Text:
+      if (v.is_string()) return {v, "", false};
+      return fail_type(d);
+    case ParamType::NumberList:
+      if (v.is_number()) return {nlohmann::json::array({v}), "", false};
+      if (v.is_string()) return from_units(d, parse_quantities(v.get<std::string>(), d.unit, ','));
+      if (v.is_array()) return numbers_of(d, v, 0);
+      return fail_type(d);
     case ParamType::Size2:
       if (v.is_string()) {
-        auto l = parse_list(v.get<std::string>(), 'x');
-        if (!l || l->size() != 2) return std::nullopt;
-        return nlohmann::json(*l);
+        const std::string text = v.get<std::string>();
+        if (d.paper && looks_like_name(text)) return paper_of(d, text);
+        Normalised n = from_units(d, parse_quantities(text, d.unit, 'x'));
+        if (n.value && n.value->size() != 2) return fail_type(d);
+        return n;
       }
-      if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()) return v;
-      return std::nullopt;
+      if (v.is_array()) return numbers_of(d, v, 2);
+      return fail_type(d);
   }
-  return std::nullopt;
+  return fail_type(d);
 }
 
 }  // namespace
@@ -151,15 +179,9 @@ std::string problem(const std::string& table, const std::string& key, const nloh
 
 nlohmann::json parse_param_text(const ParamTable& table, const ParamDef& def,
                                 const std::string& text) {
-  nlohmann::json v = text;
-  if (def.type == ParamType::Number || def.type == ParamType::Integer) {
-    auto d = parse_double(text);
-    if (!d) throw InputError(problem(table.name, def.key, text, type_rule(def.type), def.unit));
-    v = *d;
-  }
-  auto n = normalise(def, v);
-  if (!n) throw InputError(problem(table.name, def.key, text, type_rule(def.type), def.unit));
-  return *n;
+  const Normalised n = normalise(def, text);
+  if (!n.value) throw InputError(problem(table.name, def.key, text, n.rule, n.unit_rule ? "" : def.unit));
+  return *n.value;
 }
 
 nlohmann::json resolve_params(const ParamTable& table, const nlohmann::json& given) {
@@ -178,23 +200,25 @@ nlohmann::json resolve_params(const ParamTable& table, const nlohmann::json& giv
   for (const auto& d : table.defs) {
     const bool has = given.contains(d.key) && !given.at(d.key).is_null();
     if (!has) {
-      if (!d.default_value.is_null()) out[d.key] = normalise(d, d.default_value).value_or(d.default_value);
+      if (!d.default_value.is_null()) out[d.key] = normalise(d, d.default_value).value.value_or(d.default_value);
       continue;
     }
     const auto& raw = given.at(d.key);
-    auto v = normalise(d, raw);
-    if (!v) {
-      problems.push_back(problem(table.name, d.key, raw, type_rule(d.type), d.unit));
+    const Normalised n = normalise(d, raw);
+    if (!n.value) {
+      problems.push_back(problem(table.name, d.key, raw, n.rule, n.unit_rule ? "" : d.unit));
       continue;
     }
+    auto v = n.value;
     bool ok = true;
     if (d.type == ParamType::Number || d.type == ParamType::Integer) {
       ok = in_range(d, v->get<double>());
     } else if (d.type == ParamType::NumberList || d.type == ParamType::Size2) {
       for (const auto& e : *v) ok = ok && in_range(d, e.get<double>());
     } else if (!d.choices.empty()) {
-      ok = false;
-      for (const auto& c : d.choices) ok = ok || c == v->get<std::string>();
+      const auto choice = match_choice(v->get<std::string>(), d.choices);
+      ok = choice.has_value();
+      if (ok) v = nlohmann::json(*choice);  // the table's spelling: "FDM" -> "fdm"
     }
     if (!ok) {
       problems.push_back(problem(table.name, d.key, raw, describe_rule(d), d.unit));

@@ -29,7 +29,8 @@ struct ParamDef {
   bool max_exclusive = false;
   nlohmann::json default_value = nullptr;  // null: no fixed default
   std::string default_text;                // shown in help when the default is computed
-  std::vector<std::string> choices;        // Text only: allowed values, empty = any
+  std::vector<std::string> choices;        // Text only: allowed values (any case), empty = any
+  bool paper = false;                      // Size2 only: also a paper name ("A4 landscape")
 };
 
 struct ParamTable {
@@ -37,13 +38,16 @@ struct ParamTable {
   std::vector<ParamDef> defs;
 };
 
-// Checks given values (a JSON object) against the table: unknown keys, types, ranges and
-// choices. Returns the values with fixed defaults filled in, Size2 and lists normalised to
-// arrays. Throws InputError naming every problem as "table.key = value: rule (unit)".
+// Checks given values (a JSON object) against the table: unknown keys, types, units, ranges
+// and choices. Returns the values with fixed defaults filled in, Size2 and lists normalised
+// to arrays of numbers in the table's unit (a JSON string may carry units: "0.84mm",
+// "36x36mm", "A4" where `paper` is set; see slicer/unit_values.h), choices in the table's
+// spelling. Throws InputError naming every problem as "table.key = value: rule (unit)".
 nlohmann::json resolve_params(const ParamTable& table, const nlohmann::json& given);
 
-// Converts command-line text to the JSON form of `def` ("36x36" -> [36, 36]); throws
-// InputError on text that is not of the type.
+// Converts command-line text to the JSON form of `def` ("36x36" -> [36, 36], "840um" ->
+// 0.84 for a length in mm); throws InputError on text that is not of the type, or carries a
+// unit of another dimension ("scaffold.nozzle = 3mm/s: expected a length (mm, cm, m, um, in)").
 nlohmann::json parse_param_text(const ParamTable& table, const ParamDef& def,
                                 const std::string& text);
 

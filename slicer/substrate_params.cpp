@@ -14,15 +14,15 @@ const ParamTable& substrate_table() {
           {"type",
            ParamType::Text,
            "",
-           "curved substrate to print on (a cylinder held by a robot or on a rotary axis); default "
-           "none = flat",
+           "curved substrate to print on (a cylinder held by a robot or on a rotary axis, or a "
+           "mesh held by a robot); default none = flat",
            {},
            false,
            {},
            false,
            nullptr,
            "none",
-           {"cylinder"}},
+           {"cylinder", "mesh"}},
           {"radius", ParamType::Number, "mm", "cylinder radius; required with --substrate", 0.0,
            true, 10000.0},
           {"length", ParamType::Number, "mm",
@@ -51,13 +51,29 @@ const ParamTable& substrate_table() {
            "surface",
            "",
            {"surface", "deposition"}},
+          {"mesh", ParamType::Text, "",
+           "substrate mesh held by the robot (OBJ, STL, PLY, OFF, glTF, 3MF; mm, its coordinates "
+           "are the workpiece frame on the flange); required with --substrate mesh"},
+          {"extrusion",
+           ParamType::Text,
+           "",
+           "what drives the robot cell's extruder: time (E = v_ext x each lap's duration, as the "
+           "thesis' screw) or volumetric (the beads' volume through deposition.mm3_per_e); default "
+           "the profile's extruder.e_per_mm",
+           {},
+           false,
+           {},
+           false,
+           nullptr,
+           "profile",
+           {"time", "volumetric"}},
       }};
   return kTable;
 }
 
 std::string substrate_flag(const std::string& key) {
   if (key == "type") return "substrate";
-  if (key == "radius" || key == "length") return "substrate-" + key;
+  if (key == "radius" || key == "length" || key == "mesh") return "substrate-" + key;
   return key;
 }
 
@@ -67,22 +83,42 @@ std::optional<SubstrateSpec> substrate_from(const nlohmann::json& given) {
   std::vector<std::string> problems;
   if (!v.contains("type")) {
     problems.push_back(
-        "substrate.type: missing (required with a radius, length, wrap or arc-length-at: "
-        "cylinder)");
+        "substrate.type: missing (required with a radius, length, wrap, arc-length-at or mesh: "
+        "cylinder or mesh)");
   }
-  for (const char* key : {"radius", "length"}) {
-    if (!v.contains(key))
-      problems.push_back(std::string("substrate.") + key +
-                         ": missing (required for a cylinder, > 0 mm)");
+  const bool mesh = v.value("type", "") == "mesh";
+  if (mesh) {
+    if (!v.contains("mesh") || v.at("mesh").get<std::string>().empty())
+      problems.push_back("substrate.mesh: missing (required for a mesh substrate: the mesh file)");
+    for (const char* key : {"radius", "length"}) {
+      if (v.contains(key))
+        problems.push_back(std::string("substrate.") + key +
+                           ": only for a cylinder (a mesh substrate has its own size)");
+    }
+    if (v.at("wrap") == "full")
+      problems.push_back("substrate.wrap = full: only for a cylinder (a mesh is a patch)");
+  } else {
+    for (const char* key : {"radius", "length"}) {
+      if (!v.contains(key))
+        problems.push_back(std::string("substrate.") + key +
+                           ": missing (required for a cylinder, > 0 mm)");
+    }
+    if (v.contains("mesh"))
+      problems.push_back("substrate.mesh: only with --substrate mesh (type mesh)");
   }
   if (!problems.empty()) throw InputError(problems);
   SubstrateSpec s;
   s.type = v.at("type").get<std::string>();
-  s.radius_mm = v.at("radius").get<double>();
-  s.length_mm = v.at("length").get<double>();
+  if (mesh) {
+    s.mesh_path = v.at("mesh").get<std::string>();
+  } else {
+    s.radius_mm = v.at("radius").get<double>();
+    s.length_mm = v.at("length").get<double>();
+  }
   s.wrap = v.at("wrap") == "full" ? Wrap::Full : Wrap::Patch;
   s.arc_length_at =
       v.at("arc-length-at") == "deposition" ? ArcLengthAt::Deposition : ArcLengthAt::Surface;
+  if (v.contains("extrusion")) s.extrusion = v.at("extrusion").get<std::string>();
   return s;
 }
 

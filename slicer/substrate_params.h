@@ -1,6 +1,8 @@
 // Substrate parameters, declared once for the CLI (--substrate, --substrate-radius,
-// --substrate-length, --wrap, --arc-length-at) and for job files ("substrate": {"type",
-// "radius", "length", "wrap", "arc-length-at"}): every generator accepts them.
+// --substrate-length, --wrap, --arc-length-at, --substrate-mesh) and for job files
+// ("substrate": {"type", "radius", "length", "wrap", "arc-length-at", "mesh"}): every
+// generator accepts them. A cylinder needs radius and length; a mesh (a robot-held substrate
+// of any shape, slicer/mesh_substrate.h) needs the mesh file.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -25,6 +27,10 @@ struct SubstrateSpec {
   double length_mm = 0.0;
   Wrap wrap = Wrap::Patch;
   ArcLengthAt arc_length_at = ArcLengthAt::Surface;
+  // What drives a robot cell's extruder: "time", "volumetric", or empty for the machine
+  // profile's extruder.e_per_mm (--extrusion).
+  std::string extrusion;
+  std::string mesh_path;  // type "mesh": the substrate mesh file (workpiece frame, mm)
 
   bool operator==(const SubstrateSpec&) const = default;
 };
@@ -32,7 +38,7 @@ struct SubstrateSpec {
 // Keys as in the job's "substrate" object; messages read "substrate.radius = 0: must be > 0 (mm)".
 const ParamTable& substrate_table();
 // The command-line flag (without dashes) of a table key: radius -> substrate-radius,
-// type -> substrate, wrap -> wrap.
+// type -> substrate, mesh -> substrate-mesh, wrap -> wrap.
 std::string substrate_flag(const std::string& key);
 
 // Checks `given` (an object with the table's keys, as a job's "substrate" or the CLI flags

@@ -148,6 +148,7 @@ struct Importer {
                 std::vector<SubPath>& paths);
   void shape(const pugi::xml_node& n, const Context& c, std::vector<SubPath> paths);
   void text(const pugi::xml_node& n, const TextStyle& parent_text, const Context& c);
+  TextPathShape text_path(const pugi::xml_node& text, const pugi::xml_node& tp, const Context& c);
   // A length attribute in user units: em and ex of the element's font-size, % of the
   // viewport along `axis`. A value in error throws BadValue (the element is skipped).
   double len(const pugi::xml_node& n, const char* attr, LengthAxis axis, const Context& c,
@@ -434,10 +435,11 @@ void Importer::text(const pugi::xml_node& n, const TextStyle& parent_text, const
   t.layer_labels = *c.layer_labels;
   // the reader applies the element's own font properties (relative sizes must apply once)
   std::vector<std::string> bad;
+  std::vector<pugi::xml_node> text_paths;
   try {
     t.chars = read_text_chars(
         n, parent_text, [this](const pugi::xml_node& e) { return properties(e); }, c.viewport, bad,
-        origin, kMaxSvgTextChars - text_chars);
+        origin, kMaxSvgTextChars - text_chars, text_paths);
   } catch (const InputError& e) {
     if (std::string(e.what()).find("more than") != std::string::npos) throw;  // a limit
     // "<text> dy = ...", "<tspan> dy = ..." after the file name
@@ -447,9 +449,81 @@ void Importer::text(const pugi::xml_node& n, const TextStyle& parent_text, const
     const bool own = msg.rfind("<text> ", 0) == 0;
     throw BadValue{describe(n) + (own ? msg.substr(6) : " " + msg) + " (element skipped)"};
   }
+  for (const auto& tp : text_paths) t.paths.push_back(text_path(n, tp, c));
   for (const auto& b : bad) note("<tspan> in " + describe(n) + " " + b + ": not valid (left out)");
   text_chars += t.chars.size();
   if (!t.chars.empty()) out.texts.push_back(std::move(t));
+}
+
+// A <textPath> of `text`: its own `path` data (SVG 2), else the path or basic shape its href
+// names in this document, with that element's transform, in the text's user space (SVG 1.1,
+// 10.13.1). A missing or unusable reference, or a startOffset that is not a length, skips the
+// whole text with a note; the pieces count against the drawing's limit like a drawn shape's.
+TextPathShape Importer::text_path(const pugi::xml_node& text, const pugi::xml_node& tp,
+                                  const Context& c) {
+  std::string href = tp.attribute("href").value();
+  if (href.empty()) href = tp.attribute("xlink:href").value();
+  const std::string what =
+      describe(text) + " <textPath href=\"" + printable(href, 40) + "\">: ";
+  TextPathShape out;
+  Affine to_text;  // the referenced element's user space -> the text's
+  if (const auto d = tp.attribute("path")) {
+    std::string error;
+    const std::size_t room = kMaxSvgPieces - std::min(pieces, kMaxSvgPieces);
+    try {
+      out.paths = parse_path_data(d.value(), &error, room);
+    } catch (const InputError&) {
+      over("curve pieces", kMaxSvgPieces, tp);
+    }
+    if (!error.empty()) ++skipped["path data after an error"];
+  } else {
+    if (href.empty()) throw BadValue{what + "no href or path (text skipped)"};
+    const auto found =
+        href.size() < 2 || href[0] != '#' ? by_id.end() : by_id.find(href.substr(1));
+    if (found == by_id.end()) throw BadValue{what + "no element with that id (text skipped)"};
+    const pugi::xml_node target = found->second;
+    if (!geometry(target, local_name(target), c, out.paths))
+      throw BadValue{what + "not a path or basic shape (text skipped)"};
+    if (const auto tr = target.attribute("transform")) {
+      try {
+        to_text = parse_transform(tr.value());
+      } catch (const InputError&) {
+        throw BadValue{what + "its transform is not valid (text skipped)"};
+      }
+    }
+    if (const auto pl = target.attribute("pathLength")) {
+      try {
+        out.path_length = parse_length_px(trim(pl.value()), "pathLength");
+      } catch (const InputError&) {
+        out.path_length = 0.0;  // not a number: ignored, as browsers do
+      }
+      if (!(out.path_length > 0) || !std::isfinite(out.path_length)) out.path_length = 0.0;
+    }
+  }
+  for (const auto& p : out.paths) pieces += p.pieces.size() + 1;
+  if (pieces > kMaxSvgPieces) over("curve pieces", kMaxSvgPieces, tp);
+  const Affine to_mm = compose(c.to_mm, to_text);
+  for (auto& p : out.paths) {
+    p = transformed(p, to_text);
+    if (!(max_abs_coordinate(transformed(p, to_mm)) <= kMaxCoordinateMm))
+      throw BadValue{what + "a coordinate is beyond " + short_number(kMaxCoordinateMm) +
+                     " mm after transforms (text skipped)"};
+  }
+  if (const auto so = tp.attribute("startOffset")) {
+    const std::string v = trim(so.value());
+    try {
+      out.start_offset_fraction = !v.empty() && v.back() == '%';
+      // a percentage of a unit viewport is the fraction itself
+      out.start_offset = resolve_length_px(
+          v, LengthAxis::X,
+          LengthBasis{c.style.text.font_size, out.start_offset_fraction ? Vec2(1, 1) : c.viewport},
+          "startOffset");
+    } catch (const InputError&) {
+      throw BadValue{what + "startOffset = \"" + printable(v) + "\": not a length (text skipped)"};
+    }
+  }
+  if (std::string(tp.attribute("side").value()) == "right") ++skipped["textPath side=right (drawn on the left)"];
+  return out;
 }
 
 // The text of an element (a <style> sheet): its character data, CDATA sections included.

@@ -60,8 +60,10 @@ struct SvgDrawing {
 // limit above and coordinates beyond kMaxCoordinateMm after transforms throw InputError
 // naming `origin` (and the element); hidden elements (display:none, visibility:hidden) are
 // left out; of a <switch> only the first child without requiredExtensions is drawn; text is
-// kept as characters in `texts` (text_layout draws it); images, foreign objects, external
-// entities and ignored clip paths, masks and markers are counted in `skipped`.
+// kept as characters in `texts` (text_layout draws it), with the paths of its <textPath>
+// elements (a text whose textPath has no usable reference is skipped with a note); images,
+// foreign objects, external entities and ignored clip paths, masks and markers are counted
+// in `skipped`.
 SvgDrawing import_svg(std::string_view text, const std::string& origin);
 
 }  // namespace strand::slicer

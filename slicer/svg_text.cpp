@@ -52,7 +52,14 @@ struct Element {
   pugi::xml_node node;
   TextStyle style;
   std::size_t begin = 0, end = 0;  // range of its characters (raw indices, then kept ones)
+  int path = -1;                   // the <textPath> it is or lies in (index in text_paths)
 };
+
+bool is_text_path(const pugi::xml_node& n) {
+  const std::string_view name = n.name();
+  const auto colon = name.find(':');
+  return (colon == std::string_view::npos ? name : name.substr(colon + 1)) == "textPath";
+}
 
 struct Reader {
   const PropertyReader& properties;
@@ -60,22 +67,28 @@ struct Reader {
   std::size_t max_chars = 0;
   Vec2 viewport = Vec2::Zero();
   std::vector<std::string>& notes;
+  std::vector<pugi::xml_node>& text_paths;
   std::vector<RawChar> raw;
   std::vector<Element> elements;  // pre-order
 
-  void walk(const pugi::xml_node& n, TextStyle style) {
+  void walk(const pugi::xml_node& n, TextStyle style, int path) {
     const auto props = properties(n);
     if (props.count("display") && props.at("display") == "none") return;
     std::vector<std::string> root_notes;  // the <text> element's own were noted as it was entered
     inherit_text_style(props, style, viewport, elements.empty() ? root_notes : notes, true,
                        !elements.empty());
+    const bool new_path = path < 0 && !elements.empty() && is_text_path(n);
+    if (new_path) {
+      path = static_cast<int>(text_paths.size());
+      text_paths.push_back(n);
+    }
     const int id = static_cast<int>(elements.size());
-    elements.push_back({n, style, raw.size(), raw.size()});
+    elements.push_back({n, style, raw.size(), raw.size(), path});
     for (const auto& child : n.children()) {
       if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
         append(child.value(), id);
       } else if (child.type() == pugi::node_element) {
-        walk(child, style);
+        walk(child, style, path);
       }
     }
     elements[id].end = raw.size();
@@ -222,19 +235,31 @@ void inherit_text_style(const std::map<std::string, std::string>& props, TextSty
 std::vector<TextChar> read_text_chars(const pugi::xml_node& text, const TextStyle& inherited,
                                       const PropertyReader& properties, const Vec2& viewport,
                                       std::vector<std::string>& notes, const std::string& origin,
-                                      std::size_t max_chars) {
-  Reader r{properties, origin, max_chars, viewport, notes, {}, {}};
-  r.walk(text, inherited);
+                                      std::size_t max_chars,
+                                      std::vector<pugi::xml_node>& text_paths) {
+  std::vector<pugi::xml_node> paths;  // every textPath read, those without characters too
+  Reader r{properties, origin, max_chars, viewport, notes, paths, {}, {}};
+  r.walk(text, inherited, -1);
   if (r.elements.empty()) return {};
   const std::vector<std::size_t> kept = kept_characters(r.raw, r.elements[0].style.preserve_space);
   std::vector<TextChar> out;
+  std::vector<int> renumbered(paths.size(), -1);  // textPaths that keep a character, in order
   for (std::size_t k : kept) {
     TextChar c;
     c.code = is_space(r.raw[k].code) ? U' ' : r.raw[k].code;
-    c.style = r.elements[r.raw[k].owner].style;
+    const Element& owner = r.elements[r.raw[k].owner];
+    c.style = owner.style;
+    if (owner.path >= 0) {
+      if (renumbered[owner.path] < 0) {
+        renumbered[owner.path] = static_cast<int>(text_paths.size());
+        text_paths.push_back(paths[owner.path]);
+      }
+      c.path = renumbered[owner.path];
+    }
     out.push_back(c);
   }
   // Lists of outer elements first; inner elements override them for their own characters.
+  // Absolute positions from outside a textPath do not reach the characters on it.
   for (const auto& e : r.elements) {
     const auto first = std::lower_bound(kept.begin(), kept.end(), e.begin) - kept.begin();
     const auto last = std::lower_bound(kept.begin(), kept.end(), e.end) - kept.begin();
@@ -243,8 +268,13 @@ std::vector<TextChar> read_text_chars(const pugi::xml_node& text, const TextStyl
       for (std::size_t i = 0; i < values.size() && first + static_cast<long>(i) < last; ++i)
         set(out[first + i], values[i]);
     };
-    apply("x", [](TextChar& c, double v) { c.x = v; });
-    apply("y", [](TextChar& c, double v) { c.y = v; });
+    const bool outside = e.path < 0;
+    apply("x", [outside](TextChar& c, double v) {
+      if (!outside || c.path < 0) c.x = v;
+    });
+    apply("y", [outside](TextChar& c, double v) {
+      if (!outside || c.path < 0) c.y = v;
+    });
     apply("dx", [](TextChar& c, double v) { c.dx = v; });
     apply("dy", [](TextChar& c, double v) { c.dy = v; });
   }

@@ -54,13 +54,31 @@ struct TextChar {
   std::optional<double> x, y;
   double dx = 0.0, dy = 0.0;
   TextStyle style;
+  // The <textPath> it lies on (an index into SvgText::paths), -1 for none. On a path, x is
+  // a distance along it, y is not used (the x and y lists of elements outside the textPath
+  // do not reach it), dx moves along the path and dy across it.
+  int path = -1;
 
   bool operator==(const TextChar&) const = default;
+};
+
+// The path a <textPath> sets its characters along (SVG 1.1, 10.13): the referenced path or
+// basic shape, or the textPath's own `path` data, with the referenced element's transform, in
+// the user space of the text element.
+struct TextPathShape {
+  std::vector<SubPath> paths;  // followed one after the other (the jumps between them not counted)
+  double start_offset = 0.0;   // where the text starts: user units along the path, or a fraction
+  bool start_offset_fraction = false;  // of the path's length (startOffset="25%")
+  double path_length = 0.0;    // the path's pathLength (0: none): startOffset lengths are in
+                               // its units (scaled by the computed length / pathLength)
+
+  bool operator==(const TextPathShape&) const = default;
 };
 
 // A <text> element: characters in document order, placed in the text's user space.
 struct SvgText {
   std::vector<TextChar> chars;
+  std::vector<TextPathShape> paths;  // its <textPath> elements, in document order
   Affine to_mm;  // the element's user space -> mm (SVG y down)
   bool stroked = false, filled = false;
   std::string stroke_color, fill_color;

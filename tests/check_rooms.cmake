@@ -11,8 +11,12 @@ set(allowed_postprocess/inspect slicer machines postprocess/plan postprocess/ins
 set(allowed_postprocess/plot    slicer machines postprocess/plot)
 set(allowed_postprocess/preview slicer machines postprocess/plan postprocess/inspect
                                 postprocess/preview)
+set(allowed_jobs                slicer machines patterns postprocess/plan postprocess/inspect
+                                postprocess/plot postprocess/preview jobs)
+set(allowed_serve               slicer machines patterns postprocess/plan postprocess/inspect
+                                postprocess/plot postprocess/preview jobs serve)
 set(rooms slicer machines machines/send patterns postprocess/plan postprocess/inspect
-          postprocess/plot postprocess/preview)
+          postprocess/plot postprocess/preview jobs serve)
 set(failures "")
 foreach(room IN LISTS rooms)
   file(GLOB_RECURSE sources "${SOURCE_DIR}/${room}/*.h" "${SOURCE_DIR}/${room}/*.cpp")
@@ -32,7 +36,7 @@ foreach(room IN LISTS rooms)
       else()
         string(REGEX MATCH "^[a-z]+" target "${path}")
       endif()
-      if(NOT target MATCHES "^(slicer|machines|machines/send|patterns|postprocess/[a-z]+|cli)$")
+      if(NOT target MATCHES "^(slicer|machines|machines/send|patterns|postprocess/[a-z]+|jobs|serve|cli)$")
         continue()  # not a room (tests/, generated files)
       endif()
       if(NOT target IN_LIST allowed_${room})

@@ -207,7 +207,7 @@ std::optional<long long> whole(std::string_view cell) {
 // layer; every lap turning one way as the planner splits them (laps.h); extrude 1 exactly on
 // rows with a deposit feature. One finding where a sequence breaks, not on every later row.
 void check_numbering(const std::vector<RawRow>& raw, const std::vector<slicer::PosePoint>& rows,
-                     PoseCheckReport& r) {
+                     PoseCheckReport& r, bool laps_by_turn = true) {
   long long prev_index = -1;
   for (std::size_t i = 0; i < raw.size() && i < rows.size(); ++i) {
     const auto index = whole(raw[i].index);
@@ -257,7 +257,7 @@ void check_numbering(const std::vector<RawRow>& raw, const std::vector<slicer::P
     }
   }
   // Laps as the planner splits them from the turns: each turns the workpiece one way.
-  if (r.numbering.total != 0) return;  // the split needs layers in order
+  if (r.numbering.total != 0 || !laps_by_turn) return;  // the split needs layers in order
   // The split costs a pass over a layer per lap: bound it by the turn's reversals first.
   double work = 0.0;
   std::size_t reversals = 0;
@@ -303,6 +303,16 @@ void check_numbering(const std::vector<RawRow>& raw, const std::vector<slicer::P
 }
 
 }  // namespace
+
+void check_pose_rows(const std::vector<slicer::PosePoint>& rows, const machines::RobotCell& cell,
+                     PoseCheckReport& report) {
+  check_rows(rows, cell, report);
+}
+
+void check_pose_numbering(std::string_view text, const std::vector<slicer::PosePoint>& rows,
+                          bool laps_by_turn, PoseCheckReport& report) {
+  check_numbering(raw_rows(text), rows, report, laps_by_turn);
+}
 
 PoseCheckReport check_pose_csv(std::string_view text, const std::string& file,
                                const machines::MachineProfile& m) {
@@ -403,7 +413,7 @@ nlohmann::json to_json(const PoseCheckReport& r) {
       crossings.push_back(
           {{"u_mm", c.at_mm.x()}, {"v_mm", c.at_mm.y()}, {"a", c.move_a}, {"b", c.move_b}});
     layers.push_back({{"layer", l.layer},
-                      {"radius_mm", std::round(l.radius_mm * 1e4) / 1e4},
+                      {r.on_mesh ? "offset_mm" : "radius_mm", std::round(l.radius_mm * 1e4) / 1e4},
                       {"strands", l.strands},
                       {"crossings", crossings},
                       {"touches", l.touches.size()}});
@@ -424,18 +434,21 @@ nlohmann::json to_json(const PoseCheckReport& r) {
                       {"extrusion", findings_json(r.extrusion)},
                       {"parse_issues", findings_json(r.parse)}};
   if (r.joints_checked) j["joints"] = joints_json(r.joints);
+  if (r.on_mesh) j["substrate"] = r.substrate_note;
   return j;
 }
 
 std::string to_text(const PoseCheckReport& r) {
-  const bool csv = r.kind == "pose CSV";
+  const bool csv = r.kind.rfind("pose CSV", 0) == 0;
   const char* at = csv ? "row" : "line";
   std::string out = r.kind + ": " + std::to_string(r.layers.size()) + " layers, " +
                     std::to_string(r.rows) + (csv ? " poses" : " moves") +
                     (r.machine.empty() ? "" : ", machine " + r.machine) + "\n";
-  out +=
-      "layer  radius_mm  strands  crossings  touches   (crossings judged in (u, v) around the "
-      "cylinder)\n";
+  if (!r.substrate_note.empty()) out += r.substrate_note + "\n";
+  out += r.on_mesh ? "layer  offset_mm  strands  crossings  touches   (crossings judged in the "
+                     "mesh's (u, v))\n"
+                   : "layer  radius_mm  strands  crossings  touches   (crossings judged in (u, v) "
+                     "around the cylinder)\n";
   for (const auto& l : r.layers) {
     char row[160];
     std::snprintf(row, sizeof row, "%-6d %9s  %7d  %9zu  %7zu\n", l.layer,

@@ -25,7 +25,7 @@ struct PoseFinding {
 
 struct PoseLayerCheck {
   int layer = 0;
-  double radius_mm = 0.0;  // median deposit radius from the cylinder axis
+  double radius_mm = 0.0;  // median deposit radius from the cylinder axis (a mesh: offset)
   int strands = 0;
   std::vector<Contact> crossings, touches;  // at_mm = (u, v); move_a/b = rows or lines
 };
@@ -49,6 +49,10 @@ struct PoseCheckReport {
   PoseFindings numbering, quaternions, extrusion;
   bool joints_checked = false;
   machines::JointReport joints;
+  // A pose CSV on a robot-held mesh (mesh_pose_check.h): layers list the deposits' offset
+  // from the mesh, and the note says which mesh.
+  bool on_mesh = false;
+  std::string substrate_note;
 
   bool ok() const;
   std::size_t crossing_count() const;
@@ -63,6 +67,14 @@ PoseCheckReport check_pose_csv(std::string_view text, const std::string& file,
 // `machine` (optional) adds the envelope. Throws InputError when the header is incomplete.
 PoseCheckReport check_rotary_gcode(std::string_view text, const std::string& file,
                                    const machines::MachineProfile* machine);
+
+// Shared with the mesh check (mesh_pose_check.h): the rows against the cell (nozzle tip and
+// axis, unit quaternions, times and speeds), and the file's numbering (indices, layers, laps,
+// extrude flags; with `laps_by_turn` also every lap turning one way, as on a cylinder).
+void check_pose_rows(const std::vector<slicer::PosePoint>& rows, const machines::RobotCell& cell,
+                     PoseCheckReport& report);
+void check_pose_numbering(std::string_view text, const std::vector<slicer::PosePoint>& rows,
+                          bool laps_by_turn, PoseCheckReport& report);
 
 nlohmann::json to_json(const PoseCheckReport& r);
 std::string to_text(const PoseCheckReport& r);

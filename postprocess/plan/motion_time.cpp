@@ -157,6 +157,36 @@ double junction_speed_mm_per_s(const Vec3& u1, const Vec3& u2, double a, double 
   return std::sqrt(a * jd * sin_half / (1.0 - sin_half));
 }
 
+double blended_corner_speed_mm_per_s(const Vec3& u1, const Vec3& u2, double a, double blend_mm) {
+  const double cos_turn = u1.dot(u2);
+  if (cos_turn > 0.999999999999) return std::numeric_limits<double>::infinity();  // straight on
+  if (cos_turn < -0.999999 || blend_mm <= 0.0) return 0.0;  // a reversal, or an exact stop
+  const double half = 0.5 * std::acos(std::clamp(cos_turn, -1.0, 1.0));
+  return std::sqrt(a * blend_mm / std::tan(half));
+}
+
+std::vector<double> rest_to_rest_times_s(const std::vector<PathBlock>& blocks, double a) {
+  const std::size_t n = blocks.size();
+  std::vector<double> entry(n, 0.0), times(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i)
+    entry[i] = std::min({blocks[i].corner_limit, blocks[i - 1].v_max, blocks[i].v_max});
+  double exit = 0.0;
+  for (std::size_t k = n; k-- > 0;) {
+    entry[k] = std::min(entry[k], std::sqrt(exit * exit + 2 * a * blocks[k].length_mm));
+    exit = entry[k];
+  }
+  for (std::size_t i = 1; i < n; ++i) {
+    entry[i] = std::min(entry[i], std::sqrt(entry[i - 1] * entry[i - 1] +
+                                            2 * a * blocks[i - 1].length_mm));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (blocks[i].length_mm <= 0.0 || blocks[i].v_max <= 0.0) continue;
+    times[i] = block_time_s(blocks[i].length_mm, entry[i], blocks[i].v_max,
+                            i + 1 < n ? entry[i + 1] : 0.0, a);
+  }
+  return times;
+}
+
 double block_time_s(double length_mm, double v_in, double v_max, double v_out, double a) {
   const double d_acc = (v_max * v_max - v_in * v_in) / (2 * a);
   const double d_dec = (v_max * v_max - v_out * v_out) / (2 * a);

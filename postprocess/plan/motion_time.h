@@ -37,6 +37,28 @@ MotionTime trapezoid_time(const slicer::MotionProgram& p, const TimeOptions& o);
 double junction_speed_mm_per_s(const slicer::Vec3& u1, const slicer::Vec3& u2,
                                double accel_mm_per_s2, double junction_deviation_mm);
 
+// Highest speed through the corner between unit directions u1 then u2 (mm/s) of a controller
+// that blends within `blend_mm` of the corner (KRL C_DIS, Sunrise setBlendingCart, URScript r,
+// RAPID zone): the arc tangent to both motions blend_mm before and after the corner has the
+// radius blend / tan(theta / 2), theta the turn from u1 to u2, and is run at the centripetal
+// limit v = sqrt(a * radius). Infinity straight on; 0 for a reversal or without blending. The
+// same circle as junction_speed_mm_per_s, given by its tangent length instead of its deviation.
+double blended_corner_speed_mm_per_s(const slicer::Vec3& u1, const slicer::Vec3& u2,
+                                     double accel_mm_per_s2, double blend_mm);
+
+// A straight block of a run that starts and ends at rest.
+struct PathBlock {
+  double length_mm = 0.0;
+  double v_max = 0.0;             // cruise speed, mm/s
+  double corner_limit = 0.0;      // speed limit at the corner into this block, mm/s
+};
+
+// Times of the blocks (s each), planned as a firmware or robot controller does: the backward
+// pass lowers each corner to what the rest of the run can still stop from, the forward pass
+// to what the acceleration reaches; the first block starts and the last ends at rest.
+std::vector<double> rest_to_rest_times_s(const std::vector<PathBlock>& blocks,
+                                         double accel_mm_per_s2);
+
 // Time to cover `length_mm` entering at v_in, cruising at most at v_max and leaving at v_out
 // with constant acceleration a (mm, mm/s, mm/s^2); v_in and v_out must be reachable.
 double block_time_s(double length_mm, double v_in, double v_max, double v_out, double a);

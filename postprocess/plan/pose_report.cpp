@@ -164,6 +164,8 @@ std::string pose_summary(const nlohmann::json& r) {
   o << "  deposited      " << fmt_fixed(tot.at("deposit_length_mm").get<double>() / 1000.0, 3)
     << " m on the surface, " << tot.at("poses").get<int>() << " poses\n";
   o << "  time           " << clock_text(tot.at("time_s").get<double>()) << "\n";
+  if (r.contains("lap_timing"))
+    o << "  lap timing     " << r.at("lap_timing").at("text").get<std::string>() << "\n";
   if (r.contains("ink"))
     o << "  ink            " << r.at("ink").at("text").get<std::string>() << "\n";
   if (r.contains("programs"))

@@ -48,15 +48,17 @@ std::vector<std::string> header(const slicer::Toolpath& t, const machines::Machi
 
 Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
                  const PlanOptions& options, const std::string& gcode_path, bool viewer_e,
-                 const GcodeStreams& streams) {
+                 const GcodeStreams& streams, slicer::Progress* progress) {
+  slicer::progress_phase(progress, "planning");
   slicer::MotionProgram program = plan_and_release(t, m, options);
-  return produce_program(t, std::move(program), m, options, gcode_path, viewer_e, streams);
+  return produce_program(t, std::move(program), m, options, gcode_path, viewer_e, streams,
+                         progress);
 }
 
 Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,
                          const machines::MachineProfile& m, const PlanOptions& options,
                          const std::string& gcode_path, bool viewer_e,
-                         const GcodeStreams& streams) {
+                         const GcodeStreams& streams, slicer::Progress* progress) {
   Produced out;
   out.program = std::move(program);
   const Estimate e = estimate(out.program, m);
@@ -65,6 +67,7 @@ Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram progra
   out.summary = summary_text(out.report);
   machines::EmitOptions eo;
   eo.header = header(t, m, options, out.report);
+  slicer::progress_phase(progress, "writing G-code");
   if (streams.gcode) {
     machines::emit_gcode(out.program, m, eo, *streams.gcode);
   } else {

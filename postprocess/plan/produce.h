@@ -8,6 +8,7 @@
 #include "machines/profile.h"
 #include "postprocess/plan/planner.h"
 #include "slicer/motion.h"
+#include "slicer/progress.h"
 #include "slicer/toolpath.h"
 
 namespace strand::post {
@@ -29,15 +30,17 @@ struct GcodeStreams {
 
 // `gcode_path` is only recorded in the report. Throws InputError if the part does not fit.
 // With `viewer_e`, also writes the preview-only variant (machines::EmitOptions::viewer_e).
+// `progress` (may be null) is told the phases: planning, writing G-code.
 // The toolpath is taken by value and released layer by layer as it is planned (pass it with
 // std::move so a large job does not hold toolpath and program at once).
 Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
                  const PlanOptions& options, const std::string& gcode_path,
-                 bool viewer_e = false, const GcodeStreams& streams = {});
+                 bool viewer_e = false, const GcodeStreams& streams = {},
+                 slicer::Progress* progress = nullptr);
 // The same from an already planned program (conformal printing plans through a surface).
 Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,
                          const machines::MachineProfile& m, const PlanOptions& options,
                          const std::string& gcode_path, bool viewer_e = false,
-                         const GcodeStreams& streams = {});
+                         const GcodeStreams& streams = {}, slicer::Progress* progress = nullptr);
 
 }  // namespace strand::post

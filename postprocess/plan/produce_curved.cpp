@@ -17,10 +17,13 @@
 #include "machines/sunrise_writer.h"
 #include "machines/urscript_writer.h"
 #include "postprocess/plan/cylinder_placement.h"
+#include "postprocess/plan/lap_timing.h"
 #include "postprocess/plan/laps.h"
 #include "postprocess/plan/planner.h"
 #include "postprocess/plan/pose_planner.h"
 #include "postprocess/plan/pose_report.h"
+#include "postprocess/plan/produce_on_mesh.h"
+#include "postprocess/plan/report.h"
 #include "slicer/input_error.h"
 #include "slicer/params.h"
 #include "slicer/units.h"
@@ -33,6 +36,19 @@ using slicer::Feature;
 namespace {
 
 std::string deg(double rad) { return machines::fmt_fixed(slicer::rad_to_deg(rad), 1); }
+
+// --extrusion time|volumetric: what drives the robot cell's extruder, over the profile's
+// extruder.e_per_mm; a rotary printer's E is the bead volume already.
+MachineProfile with_extrusion(const MachineProfile& profile, const slicer::SubstrateSpec& s) {
+  MachineProfile m = profile;
+  if (s.extrusion.empty()) return m;
+  if (!m.robot.enabled) {
+    throw InputError("substrate.extrusion = " + s.extrusion + ": only for a robot cell's extruder (" +
+                     m.name + " is a rotary printer: its E is the bead volume)");
+  }
+  m.robot.extruder.time_based = s.extrusion == "time";
+  return m;
+}
 
 void require_curved_machine(const MachineProfile& m) {
   if (m.robot.enabled || m.rotary.enabled) return;
@@ -229,6 +245,19 @@ std::vector<std::string> header_lines(const slicer::Toolpath& t, const slicer::S
 // The extruder's volume may differ from the beads' by this fraction before a warning.
 constexpr double kVolumeBalanceTolerance = 0.10;
 
+// The lap timing in the report: per lap the nominal and planned durations and the E pushed,
+// and the whole in "lap_timing" (its text is the summary's line).
+void add_lap_timing(nlohmann::json& report, const LapTiming& timing,
+                    const machines::ExtruderProgram& extruder) {
+  auto& laps = report["laps"];
+  for (std::size_t k = 0; k < laps.size() && k < timing.planned_s.size(); ++k) {
+    laps[k]["nominal_time_s"] = round_to(timing.nominal_s[k], 2);
+    laps[k]["planned_time_s"] = round_to(timing.planned_s[k], 2);
+    if (k < extruder.lap_e.size()) laps[k]["e"] = round_to(extruder.lap_e[k], 4);
+  }
+  report["lap_timing"] = lap_timing_json(timing);
+}
+
 // KUKA: Sunrise Java and KRL .src/.dat beside the CSV.
 void write_kuka(CurvedProduced& out, const MachineProfile& m, const std::vector<std::string>& paths,
                 const std::vector<std::string>& header, double tol, const std::string& csv,
@@ -265,18 +294,14 @@ void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachinePr
   const std::string base = std::filesystem::path(paths[0]).stem().string();
   const std::string csv_name = std::filesystem::path(paths[0]).filename().string();
   const std::string csv = machines::write_pose_csv(out.program);
-  machines::ExtruderGcodeInfo xi{header, bead_areas_mm2(t)};
-  const std::string ext = machines::write_extruder_gcode(out.program, m, xi);
+  // The extruder follows the laps as the robot runs them, corner slowdowns included.
+  const LapTiming timing = time_laps(out.program, corner_model_for(m, tol));
+  machines::ExtruderGcodeInfo xi{header, bead_areas_mm2(t), timing.t_s};
+  const machines::ExtruderProgram extruder = machines::extruder_program(out.program, m, xi);
+  const std::string& ext = extruder.gcode;
   const auto lines = [](const std::string& s) { return std::count(s.begin(), s.end(), '\n'); };
-  double e_total = 0.0;
-  for (std::size_t i = 1; i < out.program.points.size(); ++i) {
-    const auto& a = out.program.points[i - 1];
-    const auto& b = out.program.points[i];
-    const double area = xi.bead_area_mm2[static_cast<std::size_t>(b.layer)];
-    if (b.extrude)
-      e_total +=
-          (b.contact_mm - a.contact_mm).norm() * machines::e_per_mm(m, b.speed_mm_per_s, area);
-  }
+  const double e_total = extruder.e_total;
+  add_lap_timing(out.report, timing, extruder);
   const auto controller = m.robot.controller;
   if (controller == machines::RobotController::UniversalRobots) {
     const std::string script = machines::write_urscript(
@@ -325,6 +350,7 @@ void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachinePr
       {"extruded_ml", std::round(ink_ml * 1e4) / 1e4},
       {"e_per_mm",
        m.robot.extruder.time_based ? "v_ext / v_cart (time-based)" : "bead area / mm3 per E"},
+      {"extrusion", m.robot.extruder.time_based ? "time" : "volumetric"},
       {"text", "E " + machines::fmt_fixed(e_total, 2) + " (" + machines::fmt_fixed(ink_ml, 2) +
                    " mL from the extruder, beads " + machines::fmt_fixed(bead_ml, 2) + " mL)"},
       {"extruder_to_bead_ratio", std::round(ratio * 1e4) / 1e4}};
@@ -333,7 +359,7 @@ void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachinePr
     std::string fix = m.robot.extruder.time_based
                           ? "set extruder.v_ext_mm_per_min to " +
                                 machines::fmt_fixed(m.robot.extruder.v_ext_mm_per_min / ratio, 1) +
-                                " or calibrate deposition.mm3_per_e"
+                                ", calibrate deposition.mm3_per_e or use --extrusion volumetric"
                           : "calibrate deposition.mm3_per_e";
     out.report["warnings"].push_back("the extruder delivers " + machines::fmt_fixed(ratio, 2) +
                                      "x the beads' volume (" + machines::fmt_fixed(ink_ml, 2) +
@@ -355,11 +381,33 @@ void write_rotary(CurvedProduced& out, const slicer::Toolpath& t, const MachineP
       {"text", std::to_string(std::count(g.begin(), g.end(), '\n')) + " G-code lines"}};
 }
 
+// A robot-held mesh (produce_on_mesh.h): its own planner, the same checks and writers.
+CurvedProduced produce_on_mesh(const slicer::Toolpath& t, const slicer::SubstrateSpec& s,
+                               const MachineProfile& m, double tol, const std::string& output) {
+  require_mesh_machine(m);
+  const std::vector<std::string> paths = curved_output_paths(m, output);
+  MeshJob job = plan_mesh_job(t, s, m, tol, output);
+  CurvedProduced out;
+  out.program = std::move(job.plan.program);
+  const nlohmann::json robot = check_robot(out.program, m);
+  out.report = std::move(job.report);
+  out.report["parameters"]["arc-tolerance"] = tol;
+  out.report["robot"] = robot;
+  write_robot(out, job.placed, m, paths, job.header, tol);
+  out.files.push_back(job.record_file);
+  out.report["outputs"]["substrate_record"] = job.record_file.first;
+  out.summary = mesh_job_summary(out.report);
+  return out;
+}
+
 }  // namespace
 
 CurvedProduced produce_curved(const slicer::Toolpath& t, const slicer::SubstrateSpec& s,
-                              const MachineProfile& m, double tol, const std::string& output) {
-  require_curved_machine(m);
+                              const MachineProfile& profile, double tol,
+                              const std::string& output) {
+  if (s.type == "mesh") return produce_on_mesh(t, s, with_extrusion(profile, s), tol, output);
+  require_curved_machine(profile);
+  const MachineProfile m = with_extrusion(profile, s);
   const std::vector<std::string> paths = curved_output_paths(m, output);
   if (t.layers.empty()) throw InputError("the pattern has no layers to place on the cylinder");
   const slicer::CylinderSurface cylinder(slicer::cylinder_spec(s, t.layers.front().height_mm));

@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "cli/sweep_runner.h"
+#include "jobs/sweep_runner.h"
 
 namespace {
 

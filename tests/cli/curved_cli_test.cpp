@@ -211,10 +211,54 @@ TEST(CurvedCli, PreviewDrawsPoseCsvsAndRotaryFilesOnTheirWorkpiece) {
                      "marks: only for flat G-code");
 }
 
+TEST(CurvedCli, ExtrusionFlagAndJobKeyChooseWhatDrivesTheExtruder) {
+  const std::string cylinder = "--substrate cylinder --substrate-radius 20 --substrate-length 80";
+  for (const std::string mode : {"time", "volumetric"}) {
+    const auto dir = fresh_dir("curved-extrusion");
+    const auto r = run_strand(kMissingRib + cylinder + kRobot + " --extrusion " + mode +
+                                  " -o p.csv --report p.json",
+                              dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto report = nlohmann::json::parse(slurp(dir + "/p.json"));
+    EXPECT_EQ(report["ink"]["extrusion"], mode);
+    const double ratio = report["ink"]["extruder_to_bead_ratio"].get<double>();
+    EXPECT_NE(r.out.find("mL from the extruder, beads"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("lap timing     laps timed with corner slowdowns: +"), std::string::npos)
+        << r.out;
+    ASSERT_TRUE(report.contains("lap_timing"));
+    EXPECT_EQ(report["laps"].size(), 6u);
+    for (const auto& lap : report["laps"])
+      EXPECT_GT(lap["planned_time_s"].get<double>(), lap["nominal_time_s"].get<double>());
+    if (mode == "volumetric") {
+      EXPECT_NEAR(ratio, 1.0, 0.01);
+      EXPECT_EQ(r.out.find("warning        the extruder delivers"), std::string::npos) << r.out;
+    } else {
+      EXPECT_LT(ratio, 0.9);
+      EXPECT_NE(r.out.find("warning        the extruder delivers 0.34x"), std::string::npos)
+          << r.out;
+    }
+  }
+  // The job key sits with the substrate's.
+  const auto dir = fresh_dir("curved-extrusion-job");
+  auto job = nlohmann::json::parse(slurp(samples_dir() + "/missing-rib-cylinder.json"));
+  job["substrate"]["extrusion"] = "volumetric";
+  std::ofstream(dir + "/j.json") << job.dump();
+  const auto r = run_strand("job j.json -o v.csv --report v.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/v.json"))["ink"]["extrusion"], "volumetric");
+  expect_rejected(kMissingRib + cylinder + kRobot + " --extrusion screw -o p.csv",
+                  "substrate.extrusion");
+  expect_rejected("scaffold --nozzle 0.8 --gap 1.5 --size 20x20 --layers 1 --substrate cylinder "
+                  "--substrate-radius 25 --substrate-length 60" + kRotary +
+                      " --extrusion volumetric -o r.gcode",
+                  "substrate.extrusion");
+}
+
 TEST(CurvedCli, HelpListsTheSubstrateFlags) {
   const auto r = run_strand("tetrachiral --help");
   for (const char* f :
-       {"--substrate ", "--substrate-radius", "--substrate-length", "--wrap", "--arc-length-at"}) {
+       {"--substrate ", "--substrate-radius", "--substrate-length", "--wrap", "--arc-length-at",
+        "--extrusion"}) {
     EXPECT_NE(r.out.find(f), std::string::npos) << f;
   }
 }

@@ -234,6 +234,46 @@ TEST(PlotCli, TextIsDrawnAndCountedOrSkippedWithTextNone) {
   EXPECT_EQ(b["skipped_elements"], nlohmann::json::array({"text (1)"}));
 }
 
+// Issue 19: text along a <textPath> plots, passes check, and its strokes stand on the ring
+// it follows (capitals: from the ring out to 21/32 of the font size).
+TEST(PlotCli, TextOnAPathStandsOnItsRingAndPassesCheck) {
+  const auto dir = fresh_dir("textpath");
+  slicer::write_file_atomic(dir + "/p.svg",
+      "<svg xmlns='http://www.w3.org/2000/svg' xmlns:xlink='http://www.w3.org/1999/xlink' width='100mm' "
+      "height='100mm' viewBox='0 0 100 100'><defs><path id='ring' d='M 10 50 A 40 40 0 1 1 90 50 A 40 40 0 1 1 10 50'/>"
+      "</defs><rect width='100' height='100' fill='none' stroke='black'/><text font-size='8' text-anchor='middle'>"
+      "<textPath xlink:href='#ring' startOffset='25%'>PLOTTED ON A RING</textPath></text></svg>");
+  const auto plot = run_strand("plot p.svg -o p.gcode --report p.json", dir);
+  ASSERT_EQ(plot.exit_code, 0) << plot.err;
+  EXPECT_NE(plot.out.find("text           1 element(s), 14 glyphs (hershey:futural)"), std::string::npos) << plot.out;
+  EXPECT_EQ(run_strand("check p.gcode --machine xy-plotter-servo", dir).exit_code, 0);
+  const auto m = machines::load_profile("xy-plotter-servo");
+  const auto report = nlohmann::json::parse(slurp(dir + "/p.json"));
+  const auto& area = report["drawable_area_mm"];
+  const slicer::Vec2 c((area[0][0].get<double>() + area[1][0].get<double>()) / 2,
+                       (area[0][1].get<double>() + area[1][1].get<double>()) / 2);
+  const auto parsed = post::parse_gcode(slurp(dir + "/p.gcode"));
+  slicer::Vec2 from = parsed.program.start_mm.head<2>();
+  int on_ring = 0, upper = 0;
+  for (const auto& mv : parsed.program.moves) {
+    const slicer::Vec2 to = mv.end_mm.head<2>();
+    if (mv.kind == slicer::MoveKind::Deposit) {
+      for (double k : {0.0, 0.5, 1.0}) {
+        const slicer::Vec2 q = machines::to_paper(m.plotter.setup, from + (to - from) * k) - c;
+        if (std::abs(std::max(std::abs(q.x()), std::abs(q.y())) - 50) < 0.05) continue;  // the square
+        const double r = q.norm();
+        EXPECT_GT(r, 40 - 0.3) << q.transpose();
+        EXPECT_LT(r, 40 + 21.0 / 32 * 8 + 0.3) << q.transpose();
+        ++on_ring;
+        upper += q.y() > 0;  // centred on the top of the ring (paper y up)
+      }
+    }
+    if (mv.kind == slicer::MoveKind::Travel || mv.kind == slicer::MoveKind::Deposit) from = to;
+  }
+  EXPECT_GT(on_ring, 100);
+  EXPECT_EQ(upper, on_ring);
+}
+
 TEST(TextCli, WritesAnSvgThatPlotsAndGcodeDirectly) {
   const auto dir = fresh_dir("textcli");
   const auto svg = run_strand("text 'd=0.84\\nl=1.6' --size 6 -o label.svg", dir);

@@ -6,8 +6,9 @@
 
 #include <algorithm>
 #include <random>
+#include <sstream>
 
-#include "cli/job_runner.h"
+#include "jobs/job_runner.h"
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
 #include "slicer/input_error.h"
@@ -79,6 +80,14 @@ TEST_P(RandomJobs, EveryWrittenFilePassesCheckOnEveryPrinter) {
       const post::CheckReport report = post::check_gcode(out.gcode, o);
       ASSERT_TRUE(report.ok()) << spec.name << " on " << m.name << " with " << params.dump()
                                << ":\n" << post::to_text(report);
+      // No move without an axis word but the named E-only ones (prime, suck-back).
+      std::istringstream lines(out.gcode);
+      for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("G1 ", 0) != 0 || line.find(';') != std::string::npos) continue;
+        ASSERT_TRUE(line.find(" X") != std::string::npos || line.find(" Y") != std::string::npos ||
+                    line.find(" Z") != std::string::npos)
+            << spec.name << " on " << m.name << " with " << params.dump() << ": " << line;
+      }
     }
   }
   EXPECT_EQ(valid, kJobsPerGenerator) << "only " << valid << " valid sets in " << kMaxDraws << " draws";

@@ -4,6 +4,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "slicer/file_io.h"
@@ -350,6 +351,36 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"too_much_work", "plug.stl --nozzle 0.001 --pitch 0.001 --layer-height 0.001",
                 "more work than allowed"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// Keenan Crane's spot (CC0, a real scan-like mesh) on the screw extruder: the clipped pattern
+// leaves slivers shorter than the output's 0.001 mm steps, which once became "G1 E0.00003"
+// lines. Every G1 now moves an axis except the named prime and suck-back lines; --viewer-e
+// writes its preview copy beside the file; the extent flags are listed for --onto only.
+TEST(SliceCli, RealMeshHasNoAxislessMovesAndWritesViewerCopy) {
+  const std::string dir = fresh_dir("slice-spot");
+  const auto r = run_strand("slice " + std::string(STRAND_SOURCE_DIR) +
+                                "/samples/meshes/spot.obj --up y --scale-to-fit 30x30x30 "
+                                "--pattern scaffold --nozzle 0.6 --gap 1 --perimeters 1 "
+                                "--machine deltawasp-2040-clay-ldm --viewer-e -o spot.gcode",
+                            dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string g = slurp(dir + "/spot.gcode");
+  std::istringstream lines(g);
+  int moves = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("G1 ", 0) != 0) continue;
+    ++moves;
+    if (line.find(';') != std::string::npos) continue;  // "; prime", "; suck-back"
+    EXPECT_TRUE(line.find(" X") != std::string::npos || line.find(" Y") != std::string::npos ||
+                line.find(" Z") != std::string::npos)
+        << line;
+  }
+  EXPECT_GT(moves, 1000);
+  EXPECT_TRUE(exists(dir + "/spot.viewer-e.gcode"));
+  EXPECT_EQ(run_strand("check spot.gcode", dir).exit_code, 0);
+  const auto help = run_strand("slice --help", dir);
+  EXPECT_NE(help.out.find("with --onto only: lattice footprint"), std::string::npos) << help.out;
+}
 
 }  // namespace
 }  // namespace strand::testing

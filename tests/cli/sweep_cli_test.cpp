@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "cli/content_hash.h"
+#include "jobs/content_hash.h"
 #include "tests/support/chromium.h"
 #include "tests/support/cli_runner.h"
 

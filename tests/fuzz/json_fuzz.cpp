@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <string>
 
-#include "cli/job_runner.h"
-#include "cli/sweep_spec.h"
+#include "jobs/job_runner.h"
+#include "jobs/sweep_spec.h"
 #include "machines/profile.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"

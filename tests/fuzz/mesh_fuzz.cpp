@@ -1,7 +1,8 @@
 // Fuzz target: any bytes as a part or substrate mesh file, in the format the first byte picks
-// (STL, OBJ, PLY, OFF through OpenMesh; glTF, GLB through tinygltf), read, placed and prepared
-// with and without --repair, strict and as a soup sliced into layers, as `strand slice` does. The
-// readers take a path, so each input is written to a file in a private temporary directory first.
+// (STL, OBJ, PLY, OFF through OpenMesh; glTF, GLB through tinygltf; a zip after it is 3MF
+// through lib3mf), read, placed and prepared with and without --repair, strict and as a soup
+// sliced into layers, as `strand slice` does. The readers take a path, so each input is written
+// to a file in a private temporary directory first.
 #include <unistd.h>
 
 #include <array>
@@ -37,7 +38,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const std::array<const char*, 6> kExtensions = {".stl", ".obj",  ".ply",
                                                          ".off", ".gltf", ".glb"};
   if (size == 0) return 0;
-  const std::string path = scratch_dir() + "/part" + kExtensions[data[0] % kExtensions.size()];
+  // A zip (3MF's container) after the first byte is read as 3MF, whatever that byte is.
+  const bool zip = size >= 5 && data[1] == 'P' && data[2] == 'K';
+  const std::string path =
+      scratch_dir() + "/part" + (zip ? ".3mf" : kExtensions[data[0] % kExtensions.size()]);
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data + 1), static_cast<std::streamsize>(size - 1));

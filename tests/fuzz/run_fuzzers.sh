@@ -21,9 +21,10 @@ seeds() {  # target -> seed files
     mesh_fuzz) ls "$src"/tests/fuzz/seeds/mesh_fuzz/* ;;
     image_fuzz) ls "$src"/samples/plot/*.png ;;
     send_fuzz) ls "$src"/tests/fuzz/seeds/send_fuzz/* ;;
+    serve_fuzz) ls "$src"/tests/fuzz/seeds/serve_fuzz/* ;;
   esac
 }
-for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz image_fuzz send_fuzz; do
+for target in svg_fuzz gcode_fuzz json_fuzz where_fuzz curved_fuzz mesh_fuzz image_fuzz send_fuzz serve_fuzz; do
   exe="$build/tests/fuzz/$target"
   regressions="$src/tests/fuzz/regressions/$target"
   corpus="$build/fuzz-corpus/$target"

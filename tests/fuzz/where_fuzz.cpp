@@ -4,7 +4,7 @@
 #include <map>
 #include <string>
 
-#include "cli/sweep_constraint.h"
+#include "jobs/sweep_constraint.h"
 #include "slicer/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

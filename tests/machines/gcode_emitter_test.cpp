@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <sstream>
 
 #include "machines/gcode_format.h"
 
@@ -48,6 +49,32 @@ TEST(GcodeEmitter, TravelIsG0DepositIsG1WithVolumetricE) {
   const std::string g = emit_gcode(two_moves(), e_machine(true), {});
   EXPECT_NE(g.find("G0 X0.000 Y0.000 Z0.500 F1000\n"), std::string::npos) << g;
   EXPECT_NE(g.find("G1 X10.000 E2.00000 F250\n"), std::string::npos) << g;
+}
+
+// A deposit shorter than the output's 0.001 mm steps (a sliver left where a clipped pattern
+// meets its boundary) writes no line of its own: no "G1 E0.00003" residue, the E total kept.
+TEST(GcodeEmitter, SubMicronDepositIsMergedIntoTheNextOneKeepingE) {
+  slicer::MotionProgram p = two_moves();
+  slicer::Move sliver = p.moves[1];
+  sliver.end_mm = {10.0002, 0, 0.5};
+  sliver.volume_mm3 = 0.2;
+  slicer::Move next = p.moves[1];
+  next.end_mm = {20, 0, 0.5};
+  p.moves.push_back(sliver);
+  p.moves.push_back(next);
+  const std::string g = emit_gcode(p, e_machine(true), {});
+  std::istringstream in(g);
+  double e_total = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("G1", 0) != 0) continue;
+    EXPECT_TRUE(line.find(" X") != std::string::npos || line.find(" Y") != std::string::npos ||
+                line.find(" Z") != std::string::npos)
+        << "a move without an axis word: " << line;
+    const auto e = line.find(" E");
+    if (e != std::string::npos) e_total += std::stod(line.substr(e + 2));
+  }
+  EXPECT_NEAR(e_total, (4.0 + 0.2 + 4.0) / 2.0, 1e-5) << g;
+  EXPECT_NE(g.find("G1 X20.000 E2.10000"), std::string::npos) << g;
 }
 
 TEST(GcodeEmitter, ExtrusionModeComesAfterG90) {

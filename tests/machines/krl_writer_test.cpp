@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <random>
+#include <tuple>
 #include <regex>
 #include <sstream>
 
@@ -74,6 +76,10 @@ bool known_line(const std::string& line) {
       std::regex(R"(  BAS\(#(INITMOV, 0|VEL_PTP, [0-9]+|ACC_PTP, [0-9]+)\))"),
       std::regex(R"(  \$TOOL = workpiece_on_flange)"),
       std::regex(R"(  \$BASE = nozzle_in_world)"),
+      std::regex(R"(  \$TOOL = TOOL_DATA\[[0-9]+\] ; [ -~]*)"),
+      std::regex(R"(  \$BASE = BASE_DATA\[[0-9]+\] ; [ -~]*)"),
+      std::regex(R"(  \$LOAD = LOAD_DATA\[[0-9]+\] ; [ -~]*)"),
+      std::regex(R"(  \$ACC\.CP = [0-9.]+ ; m/s\^2[ -~]*)"),
       std::regex(R"(  \$IPO_MODE = #TCP ; [ -~]*)"),
       std::regex(R"(  \$APO\.CDIS = [0-9.]+)"),
       std::regex(R"(  \$ADVANCE = 3)"),
@@ -96,8 +102,8 @@ bool known_line(const std::string& line) {
   return false;
 }
 
-void expect_krl_follows_the_csv(const std::string& job_args) {
-  const std::string dir = testing::fresh_dir("krl");
+void expect_krl_follows_the_csv(const std::string& job_args,
+                                const std::string& dir = testing::fresh_dir("krl")) {
   const auto r = testing::run_strand(job_args + " -o my-part.csv", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(testing::exists(dir + "/my_part.src")) << "KSS loads DEF my_part from my_part.src";
@@ -111,6 +117,8 @@ void expect_krl_follows_the_csv(const std::string& job_args) {
   const MachineProfile m = load_profile("kuka-iiwa14-wasp-cylinder");
   const Eigen::Matrix3d nozzle = nozzle_frame_rotation(m.robot);
   const auto rows = read_pose_csv(testing::slurp(dir + "/my-part.csv"), "my-part.csv");
+  EXPECT_NE(src.find("\n  $ACC.CP = 0.100000 ; m/s^2"), std::string::npos)
+      << "the profile's path acceleration, as the lap timing assumes";
   const std::regex lin(
       R"(  LIN \{X (-?[0-9.]+), Y (-?[0-9.]+), Z (-?[0-9.]+), A (-?[0-9.]+), B (-?[0-9.]+), C (-?[0-9.]+)\}(.*))");
   const std::regex ptp(
@@ -200,6 +208,93 @@ TEST(KrlWriter, TheScaffoldWithTurnZeroPosesMatchesTheCsv) {
   expect_krl_follows_the_csv(
       "scaffold --nozzle 0.8 --gap 1.5 --size 40x30 --layers 4 --substrate cylinder "
       "--substrate-radius 25 --substrate-length 60 --machine kuka-iiwa14-wasp-cylinder");
+}
+
+// A copy of the shipped KUKA profile with robot.krl values changed (null removes a key).
+std::string kuka_profile_with(const std::string& dir, const nlohmann::json& krl,
+                              const nlohmann::json& robot = nlohmann::json::object()) {
+  nlohmann::json j = nlohmann::json::parse(testing::slurp(
+      std::string(STRAND_SOURCE_DIR) + "/machines/profiles/kuka-iiwa14-wasp-cylinder.json"));
+  j["name"] = "kuka-test-cell";
+  for (const auto& [k, v] : krl.items()) j["robot"]["krl"][k] = v;
+  for (const auto& [k, v] : robot.items()) {
+    if (v.is_null()) {
+      j["robot"].erase(k);
+    } else {
+      j["robot"][k] = v;
+    }
+  }
+  const std::string path = dir + "/cell.json";
+  std::ofstream(path) << j.dump(2);
+  return path;
+}
+
+const char* const kKrlScaffold =
+    "scaffold --nozzle 0.8 --gap 1.5 --size 40x30 --layers 4 --substrate cylinder "
+    "--substrate-radius 25 --substrate-length 60";
+
+TEST(KrlWriter, ToolAndBaseFromControllerDataChangeOnlyTheirLines) {
+  const std::string cal = testing::fresh_dir("krl-cal"), plain = testing::fresh_dir("krl-plain");
+  const std::string machine = kuka_profile_with(cal, {{"tool_data", 3}, {"base_data", 5}});
+  expect_krl_follows_the_csv(std::string(kKrlScaffold) + " --machine " + machine, cal);
+  const auto r = testing::run_strand(std::string(kKrlScaffold) +
+                                         " --machine kuka-iiwa14-wasp-cylinder -o my-part.csv",
+                                     plain);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string src = testing::slurp(cal + "/my_part.src");
+  EXPECT_NE(src.find("\n  $TOOL = TOOL_DATA[3] ;"), std::string::npos);
+  EXPECT_NE(src.find("\n  $BASE = BASE_DATA[5] ;"), std::string::npos);
+  EXPECT_NE(src.find("\n  $LOAD = LOAD_DATA[3] ;"), std::string::npos) << "the tool's own load";
+  EXPECT_EQ(src.find("BAS(#TOOL"), std::string::npos) << "plain assignments";
+  EXPECT_EQ(src.find("workpiece_on_flange"), std::string::npos);
+  // Everything else as with the profile's frames: the same targets, the same .dat frames.
+  const auto lines = [](const std::string& text) {
+    std::vector<std::string> out;
+    std::istringstream in(text);
+    for (std::string l; std::getline(in, l);)
+      if (l.find("$TOOL") == std::string::npos && l.find("$BASE") == std::string::npos &&
+          l.find("$LOAD") == std::string::npos && l.rfind("; the program uses", 0) != 0 &&
+          l.rfind("; machine:", 0) != 0)
+        out.push_back(l);
+    return out;
+  };
+  EXPECT_EQ(lines(src), lines(testing::slurp(plain + "/my_part.src")));
+  EXPECT_EQ(lines(testing::slurp(cal + "/my_part.dat")),
+            lines(testing::slurp(plain + "/my_part.dat")));
+  EXPECT_NE(testing::slurp(cal + "/my_part.dat").find("TOOL_DATA[3] and BASE_DATA[5]"),
+            std::string::npos);
+}
+
+TEST(KrlWriter, WithoutControllerDataOrAccelerationTheProgramIsAsBefore) {
+  const std::string dir = testing::fresh_dir("krl-none");
+  const std::string machine =
+      kuka_profile_with(dir, nlohmann::json::object(), {{"acceleration_mm_per_s2", nullptr}});
+  const auto r = testing::run_strand(
+      std::string(kKrlScaffold) + " --machine " + machine + " -o p.csv", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string src = testing::slurp(dir + "/p.src");
+  EXPECT_NE(src.find("\n  $TOOL = workpiece_on_flange\n  $BASE = nozzle_in_world\n  $LOAD = {M "),
+            std::string::npos);
+  EXPECT_EQ(src.find("$ACC.CP"), std::string::npos);
+  EXPECT_EQ(src.find("_DATA["), std::string::npos);
+  EXPECT_EQ(testing::slurp(dir + "/P.java").find("setCartAcceleration"), std::string::npos);
+}
+
+TEST(KrlWriter, ControllerDataIndicesAreWholeNumbersInRange) {
+  for (const auto& [key, value, says] :
+       std::vector<std::tuple<std::string, nlohmann::json, std::string>>{
+           {"tool_data", 2.5, "robot.krl.tool_data"},
+           {"base_data", 0, "robot.krl.base_data"},
+           {"tool_data", 17, "robot.krl.tool_data"},
+           {"tool_index", 1, "robot.krl.tool_index"}}) {
+    const std::string dir = testing::fresh_dir("krl-index");
+    const std::string machine = kuka_profile_with(dir, {{key, value}});
+    const auto r = testing::run_strand(
+        std::string(kKrlScaffold) + " --machine " + machine + " -o p.csv", dir);
+    testing::expect_input_error(r, says);
+    EXPECT_FALSE(testing::exists(dir + "/p.csv"));
+    EXPECT_FALSE(testing::exists(dir + "/p.src"));
+  }
 }
 
 }  // namespace

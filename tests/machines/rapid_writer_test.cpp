@@ -159,6 +159,7 @@ bool rapid_known_line(const std::string& line) {
       std::regex("  ENDPROC"),
       std::regex(R"re(    TPWrite "([ !#-\[\]-~]|""|\\\\|\\[0-9A-F]{2})*";)re"),
       std::regex(R"(    ConfL\\On;)"),
+      std::regex("    PathAccLim TRUE\\\\AccMax:=" + kAbbNum + ", TRUE\\\\DecelMax:=" + kAbbNum + ";"),
       std::regex("    MoveAbsJ strand(Home|Start), strandPtp, fine" + tw),
       std::regex("    MoveL " + robtarget_re() + ", strandV[0-9]+, (fine|strandZone)" + tw),
       std::regex("    WaitDI " + id + ", [01]\\\\MaxTime:=600;"),
@@ -347,6 +348,40 @@ TEST(RapidWriter, HostileNamesStayTextAndTheModuleStillParses) {
     EXPECT_EQ(modules, 1);
     EXPECT_EQ(ends, 1);
   }
+}
+
+TEST(RapidWriter, ToolAndWorkObjectFromTheControllerAreUsedNotDeclared) {
+  const std::string dir = testing::fresh_dir("rapid-controller");
+  const std::string plain = testing::fresh_dir("rapid-plain");
+  const std::string machine =
+      abb_profile_with(dir, {{"tool", "tCalNozzle"}, {"tool_on_controller", true},
+                             {"wobj", "wobjCal"}, {"wobj_on_controller", true}});
+  const std::string base = abb_profile_with(plain, {{"tool", "tCalNozzle"}, {"wobj", "wobjCal"}});
+  for (const auto& [d, m] : {std::pair{dir, machine}, std::pair{plain, base}}) {
+    const auto r = testing::run_strand(
+        std::string(kAbbScaffold) + " --machine " + abb_quoted(m) + " -o p.csv", d);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const std::string mod = testing::slurp(dir + "/p.mod");
+  EXPECT_EQ(mod.find("PERS tooldata"), std::string::npos) << "declared on the controller";
+  EXPECT_EQ(mod.find("PERS wobjdata"), std::string::npos);
+  EXPECT_NE(mod.find(", tCalNozzle\\WObj:=wobjCal;"), std::string::npos);
+  EXPECT_NE(mod.find("PathAccLim TRUE\\AccMax:=0.500, TRUE\\DecelMax:=0.500;"), std::string::npos)
+      << "the profile's path acceleration, as the lap timing assumes";
+  std::istringstream in(mod);
+  for (std::string line; std::getline(in, line);) EXPECT_TRUE(rapid_known_line(line)) << line;
+  // Apart from the declarations (and their comment) the modules are the same.
+  std::string without = testing::slurp(plain + "/p.mod");
+  for (const char* decl : {"  PERS tooldata", "  PERS wobjdata", "  ! tCalNozzle"}) {
+    const std::size_t at = without.find(decl);
+    ASSERT_NE(at, std::string::npos) << decl;
+    without.erase(at, without.find('\n', at) + 1 - at);
+  }
+  std::string with = mod;
+  const std::size_t at = with.find("  ! tCalNozzle and wobjCal: PERS data");
+  ASSERT_NE(at, std::string::npos);
+  with.erase(at, with.find('\n', at) + 1 - at);
+  EXPECT_EQ(with, without);
 }
 
 TEST(RapidWriter, ProfileNamesMustBeRapidIdentifiers) {

@@ -19,6 +19,7 @@
 #include "machines/pose_csv.h"
 #include "machines/profile.h"
 #include "machines/robot_arm.h"
+#include "machines/workpiece_pose.h"
 #include "slicer/input_error.h"
 #include "slicer/units.h"
 #include "tests/support/cli_runner.h"
@@ -100,9 +101,15 @@ double angle_between(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
 
 // Runs a robot job into a fresh directory with its csv_dir pointing there, compiles and runs
 // the application, and checks every commanded motion against the CSV it read.
-void expect_application_follows_the_csv(const std::string& job_args) {
+// `sunrise`: further robot.sunrise values. A tool template's frames and the nozzle frame of the
+// application data are taken as calibrated where the profile says (the stand-ins log names).
+void expect_application_follows_the_csv(const std::string& job_args,
+                                        nlohmann::json sunrise = nlohmann::json::object()) {
   const std::string dir = testing::fresh_dir("sunrise");
-  const std::string machine = profile_with(dir, {{"csv_dir", dir}});
+  sunrise["csv_dir"] = dir;
+  const bool from_template = sunrise.contains("tool_template");
+  const std::string nozzle_frame = sunrise.value("nozzle_frame", "");
+  const std::string machine = profile_with(dir, sunrise);
   // A job file names its machine inside ("MACHINE" is replaced); flags take --machine.
   std::string args = job_args;
   if (args.rfind("job ", 0) == 0) {
@@ -139,7 +146,7 @@ void expect_application_follows_the_csv(const std::string& job_args) {
   };
   std::vector<std::string> kinds;
   std::istringstream in(run.out);
-  std::size_t next_row = 0, lins = 0, ptps = 0;
+  std::size_t next_row = 0, lins = 0, ptps = 0, accelerated = 0;
   int signals = 0, lap = -1;
   std::string last_ready;
   for (std::string line; std::getline(in, line);) {
@@ -150,8 +157,18 @@ void expect_application_follows_the_csv(const std::string& job_args) {
     if (kind == "FRAME") {
       double v[6];
       for (double& x : v) w >> x;
-      contact_in_flange[name] = frame(v[0], v[1], v[2], v[3], v[4], v[5]);
+      std::string parent;
+      w >> parent;  // a frame of the template: the cylinder's, calibrated as in the profile
+      EXPECT_EQ(parent, from_template ? sunrise.at("tool_frame").get<std::string>() : "");
+      contact_in_flange[name] = (from_template ? workpiece_in_flange(m.robot)
+                                               : Eigen::Isometry3d::Identity()) *
+                                frame(v[0], v[1], v[2], v[3], v[4], v[5]);
+    } else if (kind == "TEMPLATE") {
+      EXPECT_EQ(name, sunrise.value("tool_template", ""));
+    } else if (kind == "APP_FRAME") {
+      EXPECT_EQ(name, nozzle_frame);
     } else if (kind == "LOAD_MASS") {
+      EXPECT_FALSE(from_template) << "a template carries its own load data";
       EXPECT_EQ(std::stod(name), m.robot.motion.load_mass_kg);
     } else if (kind == "PTP_JOINTS") {
       double rel;
@@ -186,8 +203,20 @@ void expect_application_follows_the_csv(const std::string& job_args) {
       w >> parent;
       for (double& x : v) w >> x;
       w >> speed >> blend;
+      // Relative to the nozzle frame: that frame calibrated where the profile puts the nozzle.
+      Eigen::Isometry3d base = Eigen::Isometry3d::Identity();
+      EXPECT_EQ(parent, nozzle_frame.empty() ? "World" : nozzle_frame);
+      if (!nozzle_frame.empty()) {
+        base.translate(m.robot.nozzle_tip_mm);
+        base.rotate(nozzle_frame_rotation(m.robot));
+      }
       const Eigen::Isometry3d flange =
-          frame(v[0], v[1], v[2], v[3], v[4], v[5]) * contact_in_flange.at(name).inverse();
+          base * frame(v[0], v[1], v[2], v[3], v[4], v[5]) * contact_in_flange.at(name).inverse();
+      double acceleration = -1.0;
+      if (w >> acceleration) {
+        EXPECT_EQ(acceleration, *m.robot.motion.path_acceleration_mm_per_s2);
+        ++accelerated;
+      }
       ++lins;
       if (next_row == rows.size()) {  // the retract
         expect_flange(flange, moved_along_nozzle(m.robot, rows.back(), m.robot.motion.retract_mm),
@@ -207,7 +236,8 @@ void expect_application_follows_the_csv(const std::string& job_args) {
       ++next_row;
     }
   }
-  EXPECT_EQ(kinds.front(), "LOAD_MASS");
+  EXPECT_EQ(kinds.front(), from_template ? "TEMPLATE" : "LOAD_MASS");
+  EXPECT_EQ(accelerated, rows.size() - 1) << "every lap motion at the profile's acceleration";
   EXPECT_EQ(kinds.back(), "PTP_JOINTS") << "home last";
   EXPECT_EQ(ptps, 3u) << "home, approach, home";
   EXPECT_EQ(lins, rows.size() + 1) << "onto the first pose, one lin per later row, the retract";
@@ -231,6 +261,23 @@ TEST(SunriseWriter, TheScaffoldWithTurnZeroPosesDoesNotFlip) {
   expect_application_follows_the_csv(
       "scaffold --nozzle 0.8 --gap 1.5 --size 40x30 --layers 4 --substrate cylinder "
       "--substrate-radius 25 --substrate-length 60");
+}
+
+TEST(SunriseWriter, ToolTemplateAndNozzleFrameFromTheProjectRunAsTheCsvSays) {
+  expect_application_follows_the_csv(
+      "scaffold --nozzle 0.8 --gap 1.5 --size 40x30 --layers 4 --substrate cylinder "
+      "--substrate-radius 25 --substrate-length 60",
+      {{"tool_template", "StrandCylinder"}, {"tool_frame", "/Cylinder"},
+       {"nozzle_frame", "/Cell/NozzleTip"}});
+  // Each alone, too.
+  expect_application_follows_the_csv(
+      "scaffold --nozzle 0.8 --gap 1.5 --size 20x20 --layers 2 --substrate cylinder "
+      "--substrate-radius 25 --substrate-length 60",
+      {{"nozzle_frame", "/Nozzle"}});
+  expect_application_follows_the_csv(
+      "scaffold --nozzle 0.8 --gap 1.5 --size 20x20 --layers 2 --substrate cylinder "
+      "--substrate-radius 25 --substrate-length 60",
+      {{"tool_template", "Cyl_40"}, {"tool_frame", "/Cylinder"}});
 }
 
 const char* const kScaffold =
@@ -336,7 +383,12 @@ TEST(SunriseWriter, IdentifiersInTheProfileMustBeJavaIdentifiers) {
            {"lap_signal", "class"},
            {"io_group", "9Group"},
            {"io_group", ""},
-           {"ready_signal", "Ready()==x;INJ42();//"}}) {
+           {"ready_signal", "Ready()==x;INJ42();//"},
+           {"tool_template", "Cyl\";INJ42();//"},
+           {"tool_frame", "Cylinder"},
+           {"nozzle_frame", "/Noz\"+INJ42()+\""},
+           {"nozzle_frame", "/Cell//Nozzle"},
+           {"nozzle_frame", "/"}}) {
     const std::string dir = testing::fresh_dir("ident");
     const std::string machine = profile_with(dir, {{key, value}});
     const auto r = testing::run_strand(

@@ -137,7 +137,7 @@ TEST(MeshIo, BadFilesFailWithOneLineNamingTheFile) {
   const auto dir = testing::fresh_dir("mesh-bad");
   write_file_atomic(dir + "/empty.stl", "");
   write_file_atomic(dir + "/junk.stl", "this is not a mesh at all\n");
-  write_file_atomic(dir + "/x.3mf", "PK");
+  write_file_atomic(dir + "/x.amf", "PK");
   Mesh nan_box = box_mesh(Vec3(1, 1, 1));
   nan_box.vertices_mm[3].y() = std::nan("");
   testing::write_binary_stl(nan_box, dir + "/nan.stl");
@@ -145,11 +145,11 @@ TEST(MeshIo, BadFilesFailWithOneLineNamingTheFile) {
   EXPECT_NE(error_of(dir + "/missing.stl").find("no such file"), std::string::npos);
   EXPECT_NE(error_of(dir + "/empty.stl").find("empty"), std::string::npos);
   EXPECT_FALSE(error_of(dir + "/junk.stl").empty());
-  EXPECT_NE(error_of(dir + "/x.3mf").find("unknown format"), std::string::npos);
+  EXPECT_NE(error_of(dir + "/x.amf").find("unknown format"), std::string::npos);
   EXPECT_NE(error_of(dir + "/bad.gltf").find("glTF"), std::string::npos);
   const std::string nan = error_of(dir + "/nan.stl");
   EXPECT_NE(nan.find("has a non-finite coordinate"), std::string::npos) << nan;
-  for (const char* f : {"missing.stl", "empty.stl", "junk.stl", "x.3mf", "nan.stl", "bad.gltf"}) {
+  for (const char* f : {"missing.stl", "empty.stl", "junk.stl", "x.amf", "nan.stl", "bad.gltf"}) {
     EXPECT_EQ(error_of(dir + "/" + f).find('\n'), std::string::npos) << f;
   }
 }

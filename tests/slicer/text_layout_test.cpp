@@ -1,6 +1,8 @@
 // Text layout against the font data itself: a string's strokes are the Hershey glyphs
 // (read straight from libhersheyfont) scaled and placed at the anchor within 0.01 mm;
-// tspan offsets, chunks and transforms; white space; outline fonts; missing fonts.
+// tspan offsets, chunks and transforms; white space; outline fonts; missing fonts; text
+// along a <textPath> (glyphs on a circle, startOffset, anchors, the end of the path); the
+// Hershey advance fitted to the named font's (--text-width fit).
 #include "slicer/text_layout.h"
 
 #include <gtest/gtest.h>
@@ -318,6 +320,223 @@ TEST(TextLayout, W3cStyleFixturePlacesEveryLine) {
   const auto got = vertices(t);
   ASSERT_EQ(got.size(), want.size());
   for (std::size_t i = 0; i < got.size(); ++i) EXPECT_LT((got[i] - want[i]).norm(), 0.2) << i;
+}
+
+// Text on a path: each glyph's origin at its distance along the path (startOffset plus the
+// advances before it), turned to the path's tangent at the glyph's middle. The circle starts
+// at (cx + r, cy) and runs clockwise on the page (towards +y): letters stand outside it.
+std::vector<Vec2> expected_on_circle(const std::string& s, const char* font, const Vec2& c,
+                                     double r, double size, double s0) {
+  hershey_font* f = hershey_font_load(font);
+  EXPECT_NE(f, nullptr);
+  std::vector<Vec2> out;
+  const double k = size / 32.0;
+  double along = s0;
+  for (unsigned char ch : s) {
+    const hershey_glyph* g = hershey_font_glyph(f, ch);
+    const double w = g->width * k, mid = (along + w / 2) / r, a = along / r;
+    const Vec2 origin = c + r * Vec2(std::cos(a), std::sin(a));
+    const Vec2 t(-std::sin(mid), std::cos(mid)), down(-t.y(), t.x());
+    for (const hershey_path* p = g->paths; p; p = p->next) {
+      if (p->nverts < 2) continue;
+      for (int i = 0; i < p->nverts; ++i)
+        out.push_back(origin + p->verts[i].x * k * t - p->verts[i].y * k * down);
+    }
+    along += w;
+  }
+  hershey_font_free(f);
+  return out;
+}
+
+const char* kCircle = "<defs><circle id='c' cx='100' cy='50' r='40'/></defs>";
+constexpr double kCircleLength = 2 * 3.14159265358979323846 * 40;
+
+TEST(TextPath, GlyphsSitOnTheCircleTurnedToItsTangent) {
+  const auto t = hershey(std::string(kCircle) +
+                         "<text font-size='8'><textPath href='#c'>STRAND</textPath></text>");
+  EXPECT_EQ(t.glyphs, 6);
+  EXPECT_EQ(t.off_path, 0);
+  expect_same(vertices(t), expected_on_circle("STRAND", "futural", Vec2(100, 50), 40, 8, 0.0));
+  // and not the straight line through the first glyph's origin (the test can tell)
+  const auto straight = expected("STRAND", "futural", 140, 50, 8);
+  EXPECT_GT((vertices(t).back() - straight.back()).norm(), 1.0);
+}
+
+TEST(TextPath, StartOffsetAsLengthAndPercentOfThePathLength) {
+  const auto at30 = hershey(std::string(kCircle) +
+                            "<text font-size='8'><textPath xlink:href='#c' startOffset='30'>Ab"
+                            "</textPath></text>");
+  expect_same(vertices(at30), expected_on_circle("Ab", "futural", Vec2(100, 50), 40, 8, 30));
+  const auto quarter = hershey(std::string(kCircle) +
+                               "<text font-size='8'><textPath href='#c' startOffset='25%'>Ab"
+                               "</textPath></text>");
+  expect_same(vertices(quarter),
+              expected_on_circle("Ab", "futural", Vec2(100, 50), 40, 8, kCircleLength / 4));
+  // a quarter of the way round a clockwise circle is straight below its centre
+  EXPECT_NEAR(vertices(quarter).front().x(), 100.0, 8.0);
+  EXPECT_GT(vertices(quarter).front().y(), 85.0);
+}
+
+TEST(TextPath, AnchorMiddleCentresTheTextOnTheOffset) {
+  const auto t = hershey(std::string(kCircle) +
+                         "<text font-size='8' text-anchor='middle'><textPath href='#c' "
+                         "startOffset='50%'>Plot</textPath></text>");
+  const double w = width_of("Plot", "futural", 8);
+  expect_same(vertices(t),
+              expected_on_circle("Plot", "futural", Vec2(100, 50), 40, 8, kCircleLength / 2 - w / 2));
+}
+
+// A straight path gives the same strokes as the text written along it; tspans inside keep
+// their size, dx moves along the path, dy across it.
+TEST(TextPath, StraightPathMatchesPlainTextAndTspansKeepTheirStyle) {
+  const auto t = hershey(
+      "<path id='l' d='M 10 50 H 190' stroke='none' fill='none'/><text font-size='10'>"
+      "<textPath href='#l'>A<tspan font-size='20' dy='-3'>B</tspan><tspan dx='4'>c</tspan>"
+      "</textPath></text>");
+  std::vector<Vec2> want = expected("A", "futural", 10, 50, 10);
+  const double xb = 10 + width_of("A", "futural", 10);
+  const auto b = expected("B", "futural", xb, 47, 20);
+  const auto c = expected("c", "futural", xb + width_of("B", "futural", 20) + 4, 47, 10);
+  want.insert(want.end(), b.begin(), b.end());
+  want.insert(want.end(), c.begin(), c.end());
+  expect_same(vertices(t), want);
+}
+
+// SVG 1.1, 10.13.3: a glyph whose middle lies before the start or past the end of the path is
+// not drawn; it is counted.
+TEST(TextPath, GlyphsPastEitherEndAreDropped) {
+  const std::string path = "<path id='l' d='M 10 50 H 40'/>";  // 30 long
+  const std::string s = "ABCDEFGH";
+  const auto t = hershey(path + "<text font-size='10'><textPath href='#l'>" + s +
+                         "</textPath></text>");
+  std::size_t fits = 0;
+  while (fits < s.size() &&
+         width_of(s.substr(0, fits), "futural", 10) + width_of(s.substr(fits, 1), "futural", 10) / 2 <= 30)
+    ++fits;
+  ASSERT_GT(fits, 2u);
+  ASSERT_LT(fits, s.size());
+  EXPECT_EQ(t.glyphs, static_cast<int>(fits));
+  EXPECT_EQ(t.off_path, static_cast<int>(s.size() - fits));
+  expect_same(vertices(t), expected(s.substr(0, fits), "futural", 10, 50, 10));
+  EXPECT_NE(t.summary().find(std::to_string(s.size() - fits) + " character(s) off their path"),
+            std::string::npos);
+  // the first glyph's middle before the start: dropped, the second drawn
+  const double wa = width_of("A", "futural", 10);
+  const auto early = hershey(path + "<text font-size='10'><textPath href='#l' startOffset='" +
+                             std::to_string(-0.6 * wa) + "'>AB</textPath></text>");
+  EXPECT_EQ(early.glyphs, 1);
+  expect_same(vertices(early), expected("B", "futural", 10 + 0.4 * wa, 50, 10));
+}
+
+TEST(TextPath, MissingOrUnusableReferenceSkipsTheTextWithANote) {
+  const auto d = import_svg(
+      doc("<g id='g'/><text><textPath href='#nope'>abc</textPath></text>"
+          "<text id='t2'><textPath href='#g'>abc</textPath></text>"
+          "<text><textPath>abc</textPath></text>"
+          "<text x='5' y='9'>kept</text><rect width='5' height='5'/>"),
+      "t.svg");
+  ASSERT_EQ(d.texts.size(), 1u);
+  EXPECT_EQ(d.shapes.size(), 1u);
+  const std::vector<std::string> want = {
+      "<text id=\"t2\"> <textPath href=\"#g\">: not a path or basic shape (text skipped) (1)",
+      "<text> <textPath href=\"\">: no href or path (text skipped) (1)",
+      "<text> <textPath href=\"#nope\">: no element with that id (text skipped) (1)"};
+  EXPECT_EQ(d.skipped, want);
+}
+
+// The path's own transform applies (SVG 1.1, 10.13.1); so does the text's.
+TEST(TextPath, TransformsOfThePathAndTheTextApply) {
+  const auto t = hershey(
+      "<defs><circle id='c' r='40' transform='translate(100 50)'/></defs><g "
+      "transform='translate(0 10)'><text font-size='8'><textPath href='#c'>Ok</textPath></text>"
+      "</g>");
+  expect_same(vertices(t), expected_on_circle("Ok", "futural", Vec2(100, 60), 40, 8, 0.0));
+}
+
+// An underline on a path bends with the glyphs: a vertex 4 units below each glyph's origin
+// (towards the circle's centre here) and one at the run's end, all about 1 mm inside it.
+TEST(TextPath, UnderlineFollowsTheCircle) {
+  const auto t = hershey(std::string(kCircle) +
+                         "<text font-size='8' text-decoration='underline'><textPath "
+                         "href='#c'>ABCD</textPath></text>");
+  const SubPath& line = t.shapes.at(0).paths.back();
+  ASSERT_EQ(line.pieces.size(), 4u);
+  EXPECT_NEAR((line.start - Vec2(100, 50)).norm(), 39.0, 0.01);
+  for (const auto& piece : line.pieces) EXPECT_NEAR((piece.end() - Vec2(100, 50)).norm(), 39.0, 0.01);
+  // it ends where the text does, width / r round the circle
+  const double a = width_of("ABCD", "futural", 8) / 40;
+  // (the last vertex hangs 1 mm below the last glyph's end, turned to its middle's tangent)
+  EXPECT_LT((line.pieces.back().end() - (Vec2(100, 50) + 39 * Vec2(std::cos(a), std::sin(a)))).norm(),
+            0.1);
+}
+
+TEST(TextPath, OutlineGlyphsFollowThePathToo) {
+  const auto d = import_svg(doc(std::string(kCircle) +
+                                "<text font-size='10' font-family='DejaVu Sans'><textPath "
+                                "href='#c' startOffset='10%'>HIH</textPath></text>"),
+                            "t.svg");
+  const auto t = layout_text(d.texts, {TextMode::Outline, ""});
+  ASSERT_EQ(t.shapes.size(), 1u);
+  EXPECT_TRUE(t.shapes[0].filled);
+  EXPECT_EQ(t.glyphs, 3);
+  // capitals from the baseline on the circle outwards to about 0.73 em
+  double lo = INFINITY, hi = 0;
+  for (const auto& p : t.shapes[0].paths) {
+    EXPECT_TRUE(p.closed);
+    for (const auto& q : flatten(p, 0.001)) {
+      const double r = (q - Vec2(100, 50)).norm();
+      lo = std::min(lo, r), hi = std::max(hi, r);
+    }
+  }
+  EXPECT_NEAR(lo, 40.0, 0.3);  // the baselines are chords: their middles 0.2 mm inside
+  EXPECT_NEAR(hi, 47.3, 0.3);
+}
+
+// --text-width fit: a Hershey line as long as the same line in the font the drawing names
+// (futural happens to be about as wide as DejaVu Sans, narrower than DejaVu Sans Mono).
+TEST(TextWidth, FitMakesTheHersheyLineAsLongAsTheNamedFont) {
+  const std::u32string line = U"Strand plots lettering in DejaVu Sans";
+  for (const std::string family : {"DejaVu Sans", "DejaVu Sans Mono", "DejaVu Serif"}) {
+    SCOPED_TRACE(family);
+    const Font named_font = load_outline_font(family, "normal", "normal", line);
+    double named = 0;
+    for (char32_t c : line) named += named_font.glyphs.at(c).advance * 10 / named_font.units_per_em;
+    const auto width = [&](bool fit) {
+      // the same line anchored at its start and at its end: the shift is its width
+      const auto x0 = [&](const char* anchor) {
+        const auto d = import_svg(doc("<text x='150' y='50' font-size='10' font-family='" + family +
+                                      "' text-anchor='" + std::string(anchor) + "'>" +
+                                      u32_to_utf8(line) + "</text>"),
+                                  "t.svg");
+        TextOptions o{TextMode::Hershey, "hershey:futural"};
+        o.fit_width = fit;
+        return vertices(layout_text(d.texts, o)).front().x();
+      };
+      return x0("start") - x0("end");
+    };
+    EXPECT_NEAR(width(true), named, 0.01 * named);
+    if (family == "DejaVu Sans Mono") {
+      EXPECT_GT(std::abs(width(false) - named), 0.05 * named);
+    }
+  }
+  // only across: the letters keep their height
+  const auto d = import_svg(doc("<text x='10' y='50' font-size='10' font-family='DejaVu Sans "
+                                "Mono'>Hd</text>"),
+                            "t.svg");
+  TextOptions fit{TextMode::Hershey, ""};
+  fit.fit_width = true;
+  const auto a = vertices(layout_text(d.texts, fit));
+  const auto b = vertices(layout_text(d.texts, {TextMode::Hershey, ""}));
+  ASSERT_EQ(a.size(), b.size());
+  double moved = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(a[i].y(), b[i].y(), 1e-9);
+    moved = std::max(moved, std::abs(a[i].x() - b[i].x()));
+  }
+  EXPECT_GT(moved, 0.1);
+  const auto summary = layout_text(d.texts, fit).summary();
+  EXPECT_NE(summary.find("(hershey:futural, widths of DejaVu Sans Mono Book)"), std::string::npos)
+      << summary;
 }
 
 TEST(SvgExport, WrittenTextReadsBackToTheSameStrokes) {

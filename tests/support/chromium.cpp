@@ -25,7 +25,7 @@ ChromiumRun run_chromium(const std::string& dir, const std::string& mode, const 
                           "' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
                           " --disable-background-networking --disable-component-update --disable-sync"
                           " --enable-logging=stderr --v=0 --window-size=900,700 --user-data-dir='" + profile +
-                          "' " + mode + " 'file://" + page + "' >'" + dir + "/chromium.out' 2>'" + dir + "/chromium.err'";
+                          "' " + mode + " '" + (page.rfind("http://", 0) == 0 ? "" : "file://") + page + "' >'" + dir + "/chromium.out' 2>'" + dir + "/chromium.err'";
   const int status = std::system(cmd.c_str());
   ChromiumRun r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -15,7 +15,8 @@ struct ChromiumRun {
 };
 
 // Runs `chromium --headless ... <mode> file://<page>` with a fresh profile under `dir`;
-// `mode` is e.g. "--dump-dom" or "--screenshot=/path/shot.png".
+// `mode` is e.g. "--dump-dom" or "--screenshot=/path/shot.png". A `page` starting with
+// "http://" is opened as that URL (a test server on 127.0.0.1).
 ChromiumRun run_chromium(const std::string& dir, const std::string& mode, const std::string& page);
 
 // True when the log holds a console message or an uncaught error (pages under test log nothing).

@@ -24,5 +24,10 @@ int main(int argc, char** argv) {
   write_binary_stl(torus_mesh(15.0, 5.0, 64, 32), dir + "/torus.stl");
   // A gently curved plate substrate, 60 x 40 mm, 3 mm sag, UVs = (x, y) in mm.
   write_obj(plate_mesh(60.0, 40.0, 3.0, 30, 20), dir + "/curved-plate.obj");
+  // A sphere cap for a robot to hold (--substrate mesh): sphere radius 40 mm, 50 deg half-angle,
+  // facing the workpiece frame's +x with its apex at (20, 0, 40), as a 40 x 80 mm cylinder's
+  // u = 0 line at mid-length (the mesh's coordinates are the workpiece frame on the flange).
+  write_binary_stl(sphere_cap_mesh({-20.0, 0.0, 40.0}, {1.0, 0.0, 0.0}, 40.0, 50.0, 20, 72),
+                   dir + "/sphere-cap.stl");
   return 0;
 }

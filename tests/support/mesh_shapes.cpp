@@ -112,6 +112,92 @@ Mesh plate_mesh(double w, double d, double sag, int nx, int ny) {
   return m;
 }
 
+namespace {
+
+// The patch frame: columns across, along (the workpiece z made perpendicular to facing), facing.
+Eigen::Matrix3d patch_frame(const Vec3& facing) {
+  const Vec3 f = facing.normalized();
+  Vec3 along = Vec3::UnitZ() - Vec3::UnitZ().dot(f) * f;
+  if (along.norm() < 1e-6) along = Vec3::UnitY() - Vec3::UnitY().dot(f) * f;
+  along.normalize();
+  Eigen::Matrix3d m;
+  m.col(0) = along.cross(f);
+  m.col(1) = along;
+  m.col(2) = f;
+  return m;
+}
+
+// A grid of (rows + 1) x (cols + 1) points p(i, j), triangulated with each triangle turned
+// so its normal agrees with `outward` at its first corner.
+template <class P, class N>
+Mesh grid_mesh(int rows, int cols, P p, N outward) {
+  Mesh m;
+  for (int i = 0; i <= rows; ++i)
+    for (int j = 0; j <= cols; ++j) add(m, p(i, j));
+  auto id = [&](int i, int j) { return i * (cols + 1) + j; };
+  auto tri = [&](int a, int b, int c) {
+    const std::array<int, 3> t{a, b, c};
+    if (normal_of(m, t).dot(outward(m.vertices_mm[a])) < 0) m.triangles.push_back({a, c, b});
+    else m.triangles.push_back(t);
+  };
+  for (int i = 0; i < rows; ++i) {
+    for (int j = 0; j < cols; ++j) {
+      tri(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+      tri(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+    }
+  }
+  return m;
+}
+
+}  // namespace
+
+Mesh sphere_cap_mesh(const Vec3& centre, const Vec3& facing, double r, double half_angle_deg,
+                     int rings, int segments) {
+  const Eigen::Matrix3d f = patch_frame(facing);
+  Mesh m;
+  const int apex = add(m, centre + r * f.col(2));
+  const double cap = slicer::deg_to_rad(half_angle_deg);
+  for (int i = 1; i <= rings; ++i) {
+    const double phi = cap * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double lam = slicer::kTwoPi * j / segments;
+      add(m, centre + r * (std::cos(phi) * f.col(2) +
+                           std::sin(phi) * (std::cos(lam) * f.col(0) + std::sin(lam) * f.col(1))));
+    }
+  }
+  auto id = [&](int i, int j) { return 1 + (i - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) m.triangles.push_back({apex, id(1, j), id(1, j + 1)});
+  for (int i = 1; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) quad(m, id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+  return m;
+}
+
+Mesh saddle_mesh(const Vec3& centre, const Vec3& facing, double w, double r, int n) {
+  const Eigen::Matrix3d f = patch_frame(facing);
+  const auto at = [&](int i, int j) {
+    const double a = -w / 2 + w * j / n, b = -w / 2 + w * i / n;
+    return Vec3(centre + a * f.col(0) + b * f.col(1) + (a * a - b * b) / (2 * r) * f.col(2));
+  };
+  return grid_mesh(n, n, at, [&](const Vec3&) { return Vec3(f.col(2)); });
+}
+
+Mesh trough_mesh(const Vec3& centre, const Vec3& facing, double r, double l, int arcs,
+                 int lengths) {
+  const Eigen::Matrix3d f = patch_frame(facing);
+  const Vec3 axis_point = centre + r * f.col(2);  // the pipe's axis through its centre line
+  const auto at = [&](int i, int j) {
+    const double phi = -slicer::kPi / 2 + slicer::kPi * j / arcs, s = -l / 2 + l * i / lengths;
+    return Vec3(axis_point + r * (std::sin(phi) * f.col(0) - std::cos(phi) * f.col(2)) +
+                s * f.col(1));
+  };
+  // The inside faces the pipe's axis.
+  const auto inward = [&](const Vec3& p) {
+    const Vec3 d = axis_point - p;
+    return Vec3(d - d.dot(f.col(1)) * f.col(1));
+  };
+  return grid_mesh(lengths, arcs, at, inward);
+}
+
 void write_binary_stl(const Mesh& m, const std::string& path) {
   const std::string title = "strand test mesh (mm)";
   std::string out = title + std::string(80 - title.size(), ' ');  // the 80-byte header

@@ -19,6 +19,21 @@ slicer::Mesh torus_mesh(double ring_mm, double tube_mm, int ring_segments, int t
 // (x, y): a gently curved plate substrate, z = sag * (1 - (x^2 + y^2) / (w^2 + d^2) * 2).
 slicer::Mesh plate_mesh(double width_mm, double depth_mm, double sag_mm, int nx, int ny);
 
+// Open patches for robot-held substrates (slicer/mesh_substrate.h), built in a frame with
+// `facing` (unit) as its outward normal direction, the workpiece z axis made perpendicular to
+// it as the second patch direction (y when facing is along z), outward triangles towards facing:
+// - a sphere cap: sphere radius r, apex at centre + r * facing, half-angle deg;
+slicer::Mesh sphere_cap_mesh(const slicer::Vec3& centre, const slicer::Vec3& facing, double radius_mm,
+                             double half_angle_deg, int rings, int segments);
+// - a saddle h = (a^2 - b^2) / (2 r) over the square [-w/2, w/2]^2 of the patch directions
+//   (a across, b along the second direction), its centre at `centre`;
+slicer::Mesh saddle_mesh(const slicer::Vec3& centre, const slicer::Vec3& facing, double width_mm,
+                         double radius_mm, int n);
+// - the inside of a half pipe (a trough) of radius r and length l along the second direction,
+//   its bottom line through `centre`, open towards facing.
+slicer::Mesh trough_mesh(const slicer::Vec3& centre, const slicer::Vec3& facing, double radius_mm,
+                         double length_mm, int arcs, int lengths);
+
 void write_binary_stl(const slicer::Mesh& m, const std::string& path);
 void write_ascii_stl(const slicer::Mesh& m, const std::string& path);
 // OBJ with vt lines when the mesh has UVs.

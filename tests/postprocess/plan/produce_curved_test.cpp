@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "machines/extruder_gcode.h"
+#include "postprocess/plan/lap_timing.h"
 #include "machines/joint_analysis.h"
 #include "machines/krl_writer.h"
 #include "machines/pose_csv.h"
@@ -116,25 +117,96 @@ double deposited_mm(const slicer::PoseProgram& p) {
   return len;
 }
 
-TEST(ProduceCurved, ExtruderETotalIsVextOverVcartTimesTheDepositedLength) {
-  const std::string g = file(thesis(), "part.extruder.gcode");
-  double e = 0.0, seconds = 0.0;
-  const std::regex move(R"(^G1 E([0-9.]+) F([0-9.]+)$)"), dwell(R"(^G4 P([0-9]+))");
+// E and seconds of the extruder's program per lap (";LAP:k" starts lap k).
+struct ExtruderLaps {
+  std::vector<double> e, seconds;
+};
+
+ExtruderLaps extruder_laps(const std::string& g) {
+  ExtruderLaps out;
+  const std::regex move(R"(^G1 E([0-9.]+) F([0-9.]+)$)"), dwell(R"(^G4 P([0-9]+))"),
+      lap(R"(^;LAP:([0-9]+))");
   std::istringstream in(g.substr(g.find("\nM400")));  // after parking, E only
   for (std::string line; std::getline(in, line);) {
     std::smatch m;
+    if (std::regex_search(line, m, lap)) {
+      EXPECT_EQ(std::stoul(m[1]), out.e.size());
+      out.e.push_back(0.0), out.seconds.push_back(0.0);
+    }
     if (std::regex_search(line, m, move))
-      e += std::stod(m[1]), seconds += std::stod(m[1]) / std::stod(m[2]) * 60.0;
-    if (std::regex_search(line, m, dwell)) seconds += std::stod(m[1]) / 1000.0;
+      out.e.back() += std::stod(m[1]), out.seconds.back() += std::stod(m[1]) / std::stod(m[2]) * 60.0;
+    if (std::regex_search(line, m, dwell)) out.seconds.back() += std::stod(m[1]) / 1000.0;
     if (line.rfind("G1", 0) == 0) {
       EXPECT_EQ(line.find(" X"), std::string::npos) << line;
     }
   }
-  const double expected = 100.0 / (6.0 * 60.0) * deposited_mm(thesis().program);
-  EXPECT_NEAR(e, expected, expected * 0.005);
-  // Same time line as the robot: dwells for travels, E moves for deposits.
-  EXPECT_NEAR(seconds, thesis().program.points.back().t_s,
-              thesis().program.points.back().t_s * 0.001);
+  return out;
+}
+
+TEST(ProduceCurved, ExtruderEPerLapIsVextTimesTheLapsPlannedDepositTime) {
+  const auto m = machines::load_profile("kuka-iiwa14-wasp-cylinder");
+  const auto& p = thesis().program;
+  const LapTiming timing = time_laps(p, corner_model_for(m, 0.01));
+  // The robot's deposit time per lap, corner slowdowns included.
+  std::vector<double> deposit_s(p.laps.size(), 0.0);
+  for (std::size_t i = 1; i < p.points.size(); ++i)
+    if (p.points[i].extrude)
+      deposit_s[static_cast<std::size_t>(p.points[i].lap)] += timing.t_s[i] - timing.t_s[i - 1];
+  const ExtruderLaps x = extruder_laps(file(thesis(), "part.extruder.gcode"));
+  ASSERT_EQ(x.e.size(), p.laps.size());
+  double e = 0.0;
+  for (std::size_t k = 0; k < p.laps.size(); ++k) {
+    const double expected = 100.0 / 60.0 * deposit_s[k];  // v_ext = 100 mm/min
+    EXPECT_NEAR(x.e[k], expected, expected * 0.005) << "lap " << k;
+    // The lap takes as long in the extruder as the robot needs for it.
+    EXPECT_NEAR(x.seconds[k], timing.planned_s[k], 0.002 * timing.planned_s[k] + 0.002) << k;
+    EXPECT_GT(timing.planned_s[k], timing.nominal_s[k]) << "the corners slow every lap";
+    EXPECT_NEAR(thesis().report.at("laps")[k].at("e").get<double>(), x.e[k], 0.01);
+    EXPECT_NEAR(thesis().report.at("laps")[k].at("planned_time_s").get<double>(),
+                timing.planned_s[k], 0.01);
+    e += x.e[k];
+  }
+  // More than v_ext / v_cart x the deposited length: the corners take longer.
+  EXPECT_GT(e, 1.02 * 100.0 / (6.0 * 60.0) * deposited_mm(p));
+  EXPECT_NEAR(thesis().report.at("ink").at("e_total").get<double>(), e, 0.01);
+  EXPECT_NE(thesis().summary.find("\n  lap timing     laps timed with corner slowdowns: +4.8 % "
+                                  "over distance/speed"),
+            std::string::npos)
+      << thesis().summary;
+}
+
+TEST(ProduceCurved, ExtrusionTimeOrVolumetricChoosesWhatDrivesE) {
+  Job j = sample_job("missing-rib-cylinder.json");
+  const auto& l = j.toolpath.layers.front().strokes.front();
+  for (const std::string mode : {"time", "volumetric"}) {
+    j.substrate.extrusion = mode;
+    j.machine.robot.extruder.time_based = mode != "time";  // the flag wins over the profile
+    const auto out = produce_curved(j.toolpath, j.substrate, j.machine, 0.01, "x.csv");
+    const ExtruderLaps x = extruder_laps(file(out, "x.extruder.gcode"));
+    double e = 0.0;
+    for (double v : x.e) e += v;
+    const double ratio = out.report.at("ink").at("extruder_to_bead_ratio").get<double>();
+    EXPECT_EQ(out.report.at("ink").at("extrusion"), mode);
+    // Extruder and bead volumes are printed in both modes.
+    EXPECT_NE(out.summary.find(" mL from the extruder, beads 3.53 mL)"), std::string::npos)
+        << out.summary;
+    const bool warned = out.summary.find("warning        the extruder delivers") != std::string::npos;
+    if (mode == "volumetric") {
+      const double expected = slicer::bead_area_mm2(l.width_mm, l.height_mm) *
+                              deposited_mm(out.program) / j.machine.deposition.mm3_per_e;
+      EXPECT_NEAR(e, expected, expected * 0.005);
+      EXPECT_NEAR(ratio, 1.0, 0.01) << "balanced";
+      EXPECT_FALSE(warned) << out.summary;
+    } else {
+      EXPECT_NEAR(ratio, 0.34, 0.01);
+      EXPECT_TRUE(warned) << out.summary;
+      EXPECT_NE(out.summary.find("or use --extrusion volumetric"), std::string::npos);
+    }
+  }
+  // A rotary printer has no separate extruder to choose for.
+  Job r = sample_job("scaffold-cylinder-rotary.json");
+  r.substrate.extrusion = "time";
+  EXPECT_THROW(produce_curved(r.toolpath, r.substrate, r.machine, 0.01, "r.gcode"), InputError);
 }
 
 TEST(ProduceCurved, AVolumetricExtruderPushesTheBeadVolume) {

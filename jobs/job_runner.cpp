@@ -1,0 +1,200 @@
+// Job parsing and the generate-plan-emit-write chain, shared by every command that runs jobs.
+#include "jobs/job_runner.h"
+
+#include <stdexcept>
+
+#include "jobs/curved_job.h"
+#include "machines/gcode_format.h"
+#include "machines/profile.h"
+#include "postprocess/inspect/check.h"
+#include "postprocess/inspect/crossings.h"
+#include "slicer/file_io.h"
+#include "slicer/input_error.h"
+#include "slicer/json_input.h"
+#include "slicer/params.h"
+
+namespace strand::cli {
+
+namespace {
+
+const char* const kJobKeys[] = {"generator", "machine", "params", "output", "report",
+                                "arc-tolerance", "viewer-e", "substrate", "description"};
+
+bool is_job_key(const std::string& k) {
+  for (const char* known : kJobKeys) {
+    if (k == known) return true;
+  }
+  return false;
+}
+
+std::string generator_names() {
+  std::string names;
+  for (const auto& g : patterns::generators()) names += (names.empty() ? "" : ", ") + g.name;
+  return names;
+}
+
+// Chords coarser than the default can cut into a neighbouring pass (a chord lies inside its
+// arc by up to the tolerance): the planned program is searched for crossings and refused.
+void refuse_crossing_chords(const slicer::MotionProgram& program, const JobSettings& s) {
+  const post::ContactReport contacts =
+      post::find_contacts(program, slicer::kDefaultArcToleranceMm, slicer::kGcodeResolutionMm);
+  if (contacts.crossings.empty()) return;
+  const slicer::Vec2 at = contacts.crossings.front().at_mm;
+  throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) + ": the chords cross the strand at " +
+                   std::to_string(contacts.crossings.size()) + " place(s), first near (" +
+                   machines::fmt_xyz(at.x()) + ", " + machines::fmt_xyz(at.y()) +
+                   ") mm; use a smaller tolerance (the default " +
+                   slicer::short_number(slicer::kDefaultArcToleranceMm) + " mm keeps every pass apart)");
+}
+
+// Debug builds: every file a generator writes must pass `strand check` on its machine.
+[[maybe_unused]] void assert_passes_check(const std::string& gcode, const machines::MachineProfile& m) {
+  post::CheckOptions o;
+  o.machine = &m;
+  o.touch_mm = slicer::kGcodeResolutionMm;
+  const post::CheckReport report = post::check_gcode(gcode, o);
+  if (!report.ok()) throw std::logic_error("generated G-code fails strand check:\n" + post::to_text(report));
+}
+
+}  // namespace
+
+void vet_produced(const post::Produced& produced, const machines::MachineProfile& machine,
+                  double arc_tolerance_mm) {
+  JobSettings s;
+  s.arc_tolerance_mm = arc_tolerance_mm;
+  if (s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm) refuse_crossing_chords(produced.program, s);
+#ifndef NDEBUG
+  assert_passes_check(produced.gcode, machine);
+#else
+  (void)machine;
+#endif
+}
+
+JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
+  if (!j.is_object()) throw InputError(where + ": must be a JSON object");
+  std::vector<std::string> problems;
+  for (const auto& [k, v] : j.items()) {
+    if (!is_job_key(k)) {
+      problems.push_back(where + "." + k +
+                         ": unknown key (generator, machine, params, output, report, "
+                         "arc-tolerance, viewer-e, substrate, description)");
+    }
+  }
+  if (!problems.empty()) throw InputError(problems);
+  JobSpec s;
+  const std::string name = slicer::get_text(j, "generator", where, "");
+  s.generator = patterns::find_generator(name);
+  if (!s.generator) {
+    throw InputError(where + ".generator = " + name + ": must be one of " + generator_names());
+  }
+  s.settings.machine = slicer::get_text(j, "machine", where, s.settings.machine);
+  s.settings.output = slicer::get_text(j, "output", where, "");
+  s.settings.report = slicer::get_text(j, "report", where, "");
+  s.settings.arc_tolerance_mm =
+      slicer::get_number(j, "arc-tolerance", where, s.settings.arc_tolerance_mm);
+  s.settings.viewer_e = slicer::get_bool(j, "viewer-e", where, false);
+  s.params = j.value("params", nlohmann::json::object());
+  if (!s.params.is_object()) {
+    throw InputError(where + ".params: must be an object of parameter values, e.g. {\"nozzle\": 0.84}");
+  }
+  if (j.contains("substrate") && !j.at("substrate").is_object()) {
+    throw InputError(where + ".substrate: must be an object like {\"type\": \"cylinder\", \"radius\": 20, "
+                     "\"length\": 100}");
+  }
+  s.settings.substrate = j.value("substrate", nlohmann::json::object());
+  s.description = slicer::get_text(j, "description", where, "");
+  return s;
+}
+
+namespace {
+
+struct Prepared {
+  slicer::Toolpath toolpath;
+  machines::MachineProfile machine;
+  post::PlanOptions options;
+};
+
+// Everything a job checks before planning: arc tolerance, machine, parameters.
+Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
+                 const JobSettings& s) {
+  if (!(s.arc_tolerance_mm > 0.0 && s.arc_tolerance_mm <= 1.0)) {
+    throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
+                     ": must be in (0, 1] (mm)");
+  }
+  if (!s.substrate.empty()) {
+    throw InputError(
+        "substrate: a job on a curved substrate writes robot programs or 4-axis G-code; run it "
+        "with strand job or strand " +
+        generator.name + ", not in a sweep");
+  }
+  Prepared p;
+  p.machine = machines::load_profile(s.machine);
+  if (p.machine.plotter.enabled) {
+    throw InputError("machine = " + s.machine + ": a pen plotter; " + generator.name +
+                     " needs a printer profile (strand machines lists them)");
+  }
+  if (p.machine.robot.enabled || p.machine.rotary.enabled) {
+    throw InputError("machine = " + s.machine + " (" + machines::to_string(p.machine.volume.kind) +
+                     "): prints on a cylinder; give --substrate cylinder --substrate-radius MM "
+                     "--substrate-length MM");
+  }
+  const nlohmann::json values = slicer::resolve_params(generator.table(), params);
+  slicer::progress_phase(s.progress, "generating");
+  p.toolpath = generator.generate(values);
+  p.options = post::plan_options_from(p.toolpath, s.arc_tolerance_mm);
+  return p;
+}
+
+}  // namespace
+
+post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
+                           const JobSettings& s) {
+  Prepared p = prepare(generator, params, s);
+  post::Produced produced = post::produce(std::move(p.toolpath), p.machine, p.options,
+                                          job_output_path(generator, s), s.viewer_e, {},
+                                          s.progress);
+  slicer::progress_phase(s.progress, "checking");
+  vet_produced(produced, p.machine, s.arc_tolerance_mm);
+  return produced;
+}
+
+std::string viewer_output_path(const std::string& out) {
+  const auto dot = out.rfind('.');
+  const auto slash = out.find_last_of("/\\");
+  const bool has_ext = dot != std::string::npos && (slash == std::string::npos || dot > slash);
+  return (has_ext ? out.substr(0, dot) : out) + ".viewer-e.gcode";
+}
+
+std::string job_output_path(const patterns::GeneratorSpec& generator, const JobSettings& s) {
+  if (!s.output.empty()) return s.output;
+  return (s.output_stem.empty() ? generator.name : s.output_stem) + ".gcode";
+}
+
+post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
+                       const JobSettings& s) {
+  if (!s.substrate.empty()) return run_curved_job(generator, params, s);
+  slicer::OutputFiles out;
+  for (const std::string& input : s.inputs) out.protect_input(input);
+  const std::string path = job_output_path(generator, s);
+#ifndef NDEBUG
+  // Debug builds check the whole text of every file they write (produce_job).
+  post::Produced produced = produce_job(generator, params, s);
+  out.stage(path, produced.gcode);
+  if (s.viewer_e) out.stage(viewer_output_path(path), produced.viewer_gcode);
+#else
+  // The G-code streams into its temp file as it is formatted: a large job never holds it.
+  Prepared p = prepare(generator, params, s);
+  std::ostream& gcode = out.stage_stream(path);
+  std::ostream* viewer = s.viewer_e ? &out.stage_stream(viewer_output_path(path)) : nullptr;
+  post::Produced produced = post::produce(std::move(p.toolpath), p.machine, p.options, path,
+                                          s.viewer_e, {&gcode, viewer}, s.progress);
+  slicer::progress_phase(s.progress, "checking");
+  vet_produced(produced, p.machine, s.arc_tolerance_mm);  // the text is streamed: chords only
+#endif
+  if (!s.report.empty()) out.stage(s.report, slicer::dump_json(produced.report) + "\n");
+  slicer::progress_phase(s.progress, "writing files");
+  out.commit();
+  return produced;
+}
+
+}  // namespace strand::cli

@@ -1,0 +1,69 @@
+// The workbench's request handling, apart from the HTTP library: a Request in, a Response
+// out, so the same code is served by server.cpp, tested and fuzzed. Every request gets an
+// answer: a malformed one a 4xx JSON {"error": "..."} of one line, never an exception.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace strand::serve {
+
+// Largest request body accepted (a job file's JSON is a few hundred bytes).
+inline constexpr std::size_t kMaxBodyBytes = 1 << 20;
+// Longest saved-job name, in bytes.
+inline constexpr std::size_t kMaxNameBytes = 200;
+// Unsaved jobs (the design page's live previews) kept on disk; older ones are removed.
+inline constexpr int kKeepUnsavedJobs = 50;
+// Generation requests waiting for a worker beyond the running ones; more get 503.
+inline constexpr std::size_t kMaxWaitingJobs = 16;
+// Longest a request waits for its job before it gets 503 (the job still finishes).
+inline constexpr int kMaxJobWaitSeconds = 300;
+
+struct Request {
+  std::string method;  // "GET", "POST", ...
+  std::string path;    // decoded, without the query: "/api/jobs/3"
+  std::map<std::string, std::string> query;
+  std::map<std::string, std::string> headers;  // names in lower case
+  std::string body;
+};
+
+struct Response {
+  int status = 200;
+  std::string content_type = "application/json";
+  std::string body;
+  std::vector<std::pair<std::string, std::string>> headers;
+};
+
+struct ApiOptions {
+  std::string data_dir;  // created if missing
+  std::string token;     // "" = none required
+  int workers = 0;       // generation threads; 0 = min(4, cores)
+  // False: generation requests are checked but not run (the fuzz target's bound on work).
+  bool run_jobs = true;
+};
+
+class Api {
+ public:
+  // Opens (creates) the data directory and its database; throws InputError when it cannot.
+  explicit Api(const ApiOptions& options);
+  ~Api();
+  Api(const Api&) = delete;
+  Api& operator=(const Api&) = delete;
+
+  Response handle(const Request& request);
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+// "$XDG_DATA_HOME/strand", else "$HOME/.local/share/strand", else "strand-data".
+std::string default_data_dir();
+// 127.0.0.0/8, ::1 and localhost.
+bool is_loopback_host(const std::string& host);
+
+}  // namespace strand::serve

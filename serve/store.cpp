@@ -1,0 +1,134 @@
+// SQLite access for the workbench: prepared statements, one connection behind a mutex.
+#include "serve/store.h"
+
+#include <sqlite3.h>
+
+#include <memory>
+
+#include "slicer/input_error.h"
+
+namespace strand::serve {
+
+namespace {
+
+struct Statement {
+  sqlite3_stmt* s = nullptr;
+  Statement(sqlite3* db, const char* sql) {
+    if (sqlite3_prepare_v2(db, sql, -1, &s, nullptr) != SQLITE_OK) {
+      throw std::runtime_error(std::string("sqlite: ") + sqlite3_errmsg(db));
+    }
+  }
+  ~Statement() { sqlite3_finalize(s); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  void bind(int i, const std::string& v) { sqlite3_bind_text(s, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
+  void bind(int i, std::int64_t v) { sqlite3_bind_int64(s, i, v); }
+  bool step() {
+    const int rc = sqlite3_step(s);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw std::runtime_error(std::string("sqlite: ") + sqlite3_errmsg(sqlite3_db_handle(s)));
+  }
+  std::string text(int col) {
+    const auto* p = sqlite3_column_text(s, col);
+    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(s, col))) : "";
+  }
+};
+
+const char* const kColumns = "SELECT id, created, name, saved, status, job, result FROM jobs ";
+
+JobRow row_of(Statement& st) {
+  JobRow r;
+  r.id = sqlite3_column_int64(st.s, 0);
+  r.created = st.text(1);
+  r.name = st.text(2);
+  r.saved = sqlite3_column_int(st.s, 3) != 0;
+  r.status = st.text(4);
+  r.job = st.text(5);
+  r.result = st.text(6);
+  return r;
+}
+
+}  // namespace
+
+Store::Store(const std::string& path) {
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX,
+                      nullptr) != SQLITE_OK) {
+    const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw InputError("--data: cannot open " + path + " (" + why + ")");
+  }
+  sqlite3_busy_timeout(db_, 5000);
+  char* err = nullptr;
+  const char* schema =
+      "PRAGMA journal_mode=WAL;"
+      "CREATE TABLE IF NOT EXISTS jobs ("
+      " id INTEGER PRIMARY KEY AUTOINCREMENT,"
+      " created TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%SZ','now')),"
+      " name TEXT NOT NULL, saved INTEGER NOT NULL, status TEXT NOT NULL DEFAULT 'running',"
+      " job TEXT NOT NULL, result TEXT NOT NULL DEFAULT '');"
+      // a job still running when the server stopped never finished
+      "UPDATE jobs SET status = 'failed' WHERE status = 'running';";
+  if (sqlite3_exec(db_, schema, nullptr, nullptr, &err) != SQLITE_OK) {
+    const std::string why = err ? err : "?";
+    sqlite3_free(err);
+    sqlite3_close(db_);
+    throw InputError("--data: cannot use " + path + " (" + why + ")");
+  }
+}
+
+Store::~Store() { sqlite3_close(db_); }
+
+std::int64_t Store::insert(bool saved, const std::string& name, const std::string& job) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, "INSERT INTO jobs (name, saved, job) VALUES (?, ?, ?)");
+  st.bind(1, name);
+  st.bind(2, std::int64_t{saved ? 1 : 0});
+  st.bind(3, job);
+  st.step();
+  return sqlite3_last_insert_rowid(db_);
+}
+
+void Store::finish(std::int64_t id, const std::string& status, const std::string& result) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, "UPDATE jobs SET status = ?, result = ? WHERE id = ?");
+  st.bind(1, status);
+  st.bind(2, result);
+  st.bind(3, id);
+  st.step();
+}
+
+std::optional<JobRow> Store::get(std::int64_t id) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, (std::string(kColumns) + "WHERE id = ?").c_str());
+  st.bind(1, id);
+  if (!st.step()) return std::nullopt;
+  return row_of(st);
+}
+
+std::vector<JobRow> Store::saved_jobs() {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, (std::string(kColumns) + "WHERE saved = 1 ORDER BY id DESC").c_str());
+  std::vector<JobRow> rows;
+  while (st.step()) rows.push_back(row_of(st));
+  return rows;
+}
+
+bool Store::remove(std::int64_t id) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, "DELETE FROM jobs WHERE id = ?");
+  st.bind(1, id);
+  st.step();
+  return sqlite3_changes(db_) > 0;
+}
+
+std::vector<std::int64_t> Store::stale_unsaved(int keep) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, "SELECT id FROM jobs WHERE saved = 0 AND status != 'running' ORDER BY id DESC LIMIT -1 OFFSET ?");
+  st.bind(1, std::int64_t{keep});
+  std::vector<std::int64_t> ids;
+  while (st.step()) ids.push_back(sqlite3_column_int64(st.s, 0));
+  return ids;
+}
+
+}  // namespace strand::serve
