@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <polyclipping/clipper.hpp>
 
+#include "slicer/input_error.h"
 #include "slicer/tolerances.h"
 
 namespace strand::slicer {
@@ -15,10 +18,20 @@ using ClipperLib::IntPoint;
 using ClipperLib::Path;
 using ClipperLib::Paths;
 
+// Farther than any machine or drawing reaches, and well inside Clipper's integer range
+// (4.6e13 mm at kClipperUnitsPerMm): a region past it is refused, never cast.
+constexpr double kMaxRegionCoordinateMm = 1e7;
+
 Path to_path(const Ring& ring) {
   Path p;
   p.reserve(ring.size());
   for (const Vec2& v : ring) {
+    if (!(std::abs(v.x()) <= kMaxRegionCoordinateMm && std::abs(v.y()) <= kMaxRegionCoordinateMm)) {
+      char where[96];
+      std::snprintf(where, sizeof where, "(%.6g, %.6g)", v.x(), v.y());
+      throw InputError(std::string("region: a contour point at ") + where +
+                       " mm lies beyond the 1e+07 mm coordinate range");
+    }
     p.emplace_back(static_cast<ClipperLib::cInt>(std::llround(v.x() * kClipperUnitsPerMm)),
                    static_cast<ClipperLib::cInt>(std::llround(v.y() * kClipperUnitsPerMm)));
   }

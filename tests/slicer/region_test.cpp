@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "slicer/input_error.h"
 #include "slicer/units.h"
 
 namespace strand::slicer {
@@ -12,6 +13,16 @@ namespace {
 
 Ring square(double x0, double y0, double side) {
   return {Vec2(x0, y0), Vec2(x0 + side, y0), Vec2(x0 + side, y0 + side), Vec2(x0, y0 + side)};
+}
+
+// A contour far beyond any machine (a hostile mesh's vertex at 1e15 mm) is refused in one
+// line before its coordinates are cast to Clipper's integers (it threw from inside Clipper).
+TEST(Region, ContourBeyondTheCoordinateRangeIsRefused) {
+  const Ring far = {{0, 0}, {1e15, 0}, {1e15, 1}};
+  EXPECT_THROW(region_from_oriented_loops({far}), InputError);
+  EXPECT_THROW(region_from_contours({far}), InputError);
+  const Ring near = {{0, 0}, {10, 0}, {10, 10}};
+  EXPECT_EQ(region_from_oriented_loops({near}).size(), 1u);
 }
 
 TEST(Region, NestedContoursBecomeHolesAndIslands) {
