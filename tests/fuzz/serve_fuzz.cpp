@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <filesystem>
 #include <string>
 
 #include "serve/api.h"
@@ -17,8 +18,9 @@ namespace {
 
 strand::serve::Api& api() {
   static std::unique_ptr<strand::serve::Api> a = [] {
-    char dir[] = "/tmp/strand-serve-fuzz-XXXXXX";
-    if (!::mkdtemp(dir)) std::abort();
+    std::string dir =
+        (std::filesystem::temp_directory_path() / "strand-serve-fuzz-XXXXXX").string();
+    if (!::mkdtemp(dir.data())) std::abort();
     strand::serve::ApiOptions o;
     o.data_dir = dir;
     o.run_jobs = false;
