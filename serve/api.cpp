@@ -1,8 +1,6 @@
 // Routes, access rules (loopback Host, token, same-origin) and the job handlers of the
 // workbench. Client input never names a path: jobs are numbered by SQLite, their files are
 // named by the server and looked up by exact name in the job's recorded list.
-#include "serve/api.h"
-
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -22,6 +20,8 @@
 #include "postprocess/inspect/gcode_parser.h"
 #include "postprocess/preview/preview_html.h"
 #include "postprocess/preview/preview_scene.h"
+#include "serve/api.h"
+#include "serve/api_state.h"
 #include "serve/pages.h"
 #include "serve/store.h"
 #include "serve/worker_pool.h"
@@ -37,100 +37,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
-
-// Compact, one line, never throwing on bytes that are not UTF-8.
-std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
-
-Response json_response(int status, const json& j) {
-  Response r;
-  r.status = status;
-  r.body = dump(j) + "\n";
-  return r;
-}
-
-Response error(int status, const std::string& message) {
-  std::string line = message.substr(0, 1000);
-  return json_response(status, {{"error", line}});
-}
-
-class HttpError : public std::runtime_error {
- public:
-  HttpError(int status, const std::string& message) : std::runtime_error(message), status(status) {}
-  int status;
-};
-
-std::vector<std::string> split_path(const std::string& path) {
-  std::vector<std::string> parts;
-  std::size_t start = 1;
-  if (path.empty() || path[0] != '/') return {"\x01"};  // matches no route
-  while (start <= path.size()) {
-    const std::size_t next = path.find('/', start);
-    parts.push_back(path.substr(start, next == std::string::npos ? std::string::npos : next - start));
-    if (next == std::string::npos) break;
-    start = next + 1;
-  }
-  return parts;
-}
-
-std::int64_t parse_id(const std::string& text) {
-  if (text.empty() || text.size() > 15 || !std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-    throw HttpError(404, "no job " + text.substr(0, 40) + " (ids are numbers, see GET /api/jobs)");
-  }
-  return std::stoll(text);
-}
-
-std::string header(const Request& r, const std::string& name) {
-  const auto it = r.headers.find(name);
-  return it == r.headers.end() ? "" : it->second;
-}
-
-// "http://h:1/x" -> "h:1"
-std::string authority_of(const std::string& url) {
-  const auto scheme = url.find("://");
-  if (scheme == std::string::npos) return "";
-  const auto start = scheme + 3;
-  const auto end = url.find_first_of("/?#", start);
-  return url.substr(start, end == std::string::npos ? std::string::npos : end - start);
-}
-
-// "h:1" -> "h", "[::1]:8080" -> "::1"
-std::string host_name(const std::string& authority) {
-  if (!authority.empty() && authority[0] == '[') {
-    const auto close = authority.find(']');
-    return close == std::string::npos ? authority : authority.substr(1, close - 1);
-  }
-  return authority.substr(0, authority.find(':'));
-}
-
-bool same_origin(const Request& r) {
-  const std::string host = header(r, "host");
-  const std::string site = header(r, "sec-fetch-site");
-  if (!site.empty() && site != "same-origin" && site != "none") return false;
-  const std::string origin = header(r, "origin");
-  if (!origin.empty()) return authority_of(origin) == host;
-  const std::string referer = header(r, "referer");
-  if (!referer.empty()) return authority_of(referer) == host;
-  return true;  // not a browser (curl, scripts): CSRF needs a browser
-}
-
-bool equal_constant_time(const std::string& a, const std::string& b) {
-  unsigned diff = a.size() == b.size() ? 0u : 1u;
-  for (std::size_t i = 0; i < a.size(); ++i) diff |= static_cast<unsigned char>(a[i]) ^ static_cast<unsigned char>(b[i % (b.size() + 1)]);
-  return diff == 0;
-}
-
-std::string cookie(const Request& r, const std::string& name) {
-  const std::string all = header(r, "cookie");
-  std::size_t pos = 0;
-  while (pos < all.size()) {
-    const std::size_t end = std::min(all.find(';', pos), all.size());
-    std::string part = all.substr(pos, end - pos);
-    part.erase(0, part.find_first_not_of(' '));
-    if (part.rfind(name + "=", 0) == 0) return part.substr(name.size() + 1);
-    pos = end + 1;
-  }
-  return "";
-}
 
 const char* type_name(slicer::ParamType t) {
   switch (t) {
@@ -190,18 +96,6 @@ json machines_json() {
   return {{"machines", list}};
 }
 
-std::string content_type_for(const std::string& name) {
-  const std::string ext = fs::path(name).extension().string();
-  if (ext == ".png") return "image/png";
-  if (ext == ".html") return "text/html; charset=utf-8";
-  if (ext == ".json") return "application/json";
-  if (ext == ".csv") return "text/csv; charset=utf-8";
-  if (ext == ".gcode" || ext == ".java" || ext == ".src" || ext == ".dat" || ext == ".txt" || ext == ".mod" || ext == ".script") {
-    return "text/plain; charset=utf-8";
-  }
-  return "application/octet-stream";
-}
-
 json figures_of(const json& report) {
   json f = json::object();
   try {
@@ -220,30 +114,6 @@ json figures_of(const json& report) {
 
 }  // namespace
 
-struct Api::State {
-  ApiOptions options;
-  fs::path dir;
-  Store store;
-  WorkerPool pool;
-
-  explicit State(const ApiOptions& o, const fs::path& d)
-      : options(o), dir(d), store((d / "strand.sqlite").string()),
-        pool(o.workers > 0 ? o.workers : static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u)),
-             kMaxWaitingJobs) {}
-
-  fs::path job_dir(std::int64_t id) const { return dir / "jobs" / std::to_string(id); }
-
-  void drop_job(std::int64_t id) {
-    store.remove(id);
-    std::error_code ec;
-    fs::remove_all(job_dir(id), ec);
-  }
-
-  Response route(const Request& r);
-  Response run(const Request& r, bool save);
-  json produce(std::int64_t id, const cli::JobSpec& spec, const std::string& ext);
-  json summary_of(const JobRow& row, bool with_report);
-};
 
 namespace {
 

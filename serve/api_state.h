@@ -1,0 +1,72 @@
+// What the workbench's route handlers share: the HTTP error they throw, JSON answers, path
+// pieces, headers, and the server's state (options, data directory, database, workers).
+// Handlers of one area (jobs, queue, plot) live in files of their own and are called from
+// Api::State::route.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "serve/api.h"
+#include "serve/store.h"
+#include "serve/worker_pool.h"
+
+namespace strand::cli {
+struct JobSpec;
+}
+
+namespace strand::serve {
+
+// Thrown by handlers; Api::handle answers it as {"error": what()} with the status.
+class HttpError : public std::runtime_error {
+ public:
+  HttpError(int status, const std::string& message) : std::runtime_error(message), status(status) {}
+  int status;
+};
+
+// Compact, one line, never throwing on bytes that are not UTF-8.
+std::string dump(const nlohmann::json& j);
+Response json_response(int status, const nlohmann::json& j);
+Response error(int status, const std::string& message);
+// "/api/jobs/3" -> {"api", "jobs", "3"}; a path not starting with '/' matches no route.
+std::vector<std::string> split_path(const std::string& path);
+// A job id from the path, 404 unless digits.
+std::int64_t parse_id(const std::string& text);
+// A header by its lower-case name, "" when absent.
+std::string header(const Request& r, const std::string& name);
+// "h:1" -> "h", "[::1]:8080" -> "::1"
+std::string host_name(const std::string& authority);
+// False when Origin, Referer or Sec-Fetch-Site name another site.
+bool same_origin(const Request& r);
+bool equal_constant_time(const std::string& a, const std::string& b);
+std::string cookie(const Request& r, const std::string& name);
+std::string content_type_for(const std::string& name);
+
+struct Api::State {
+  ApiOptions options;
+  std::filesystem::path dir;
+  Store store;
+  WorkerPool pool;
+
+  State(const ApiOptions& o, const std::filesystem::path& d);
+
+  std::filesystem::path job_dir(std::int64_t id) const { return dir / "jobs" / std::to_string(id); }
+
+  void drop_job(std::int64_t id) {
+    store.remove(id);
+    std::error_code ec;
+    std::filesystem::remove_all(job_dir(id), ec);
+  }
+
+  Response route(const Request& r);
+  Response run(const Request& r, bool save);
+  nlohmann::json produce(std::int64_t id, const cli::JobSpec& spec, const std::string& ext);
+  nlohmann::json summary_of(const JobRow& row, bool with_report);
+};
+
+}  // namespace strand::serve
