@@ -63,7 +63,7 @@ install: build-strand
 # Test-only tools: javac/java compile and run the generated Sunrise programs against stand-in
 # classes (tests/machines/sunrise_writer_test.cpp); Chromium loads the HTML previews headless;
 # groff checks the manual pages.
-TEST_PACKAGES := openjdk-17-jdk-headless chromium groff-base curl
+TEST_PACKAGES := openjdk-17-jdk-headless chromium chromium-driver python3-selenium groff-base curl
 
 test: build
 	@$(MAKE) deps DEBIAN_PACKAGES="$(TEST_PACKAGES)"

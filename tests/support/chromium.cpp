@@ -35,6 +35,23 @@ ChromiumRun run_chromium(const std::string& dir, const std::string& mode, const 
   return r;
 }
 
+ChromiumRun run_browser_script(const std::string& script, const std::string& url, const std::string& dir) {
+  ChromiumRun r;
+  if (!std::filesystem::exists("/usr/bin/chromedriver") || std::system("/usr/bin/python3 -c 'import selenium' 2>/dev/null") != 0) {
+    r.exit_code = 77;
+    return r;
+  }
+  const std::string path = std::string(STRAND_SOURCE_DIR) + "/" + script;
+  const std::string cmd = "cd '" + dir + "' && PYTHONPATH='" + std::string(STRAND_SOURCE_DIR) +
+                          "/tests/support/browser' timeout 180 /usr/bin/python3 '" + path + "' '" + url + "' '" + dir +
+                          "' >'" + dir + "/browser.out' 2>'" + dir + "/browser.err'";
+  const int status = std::system(cmd.c_str());
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(dir + "/browser.out");
+  r.log = slurp(dir + "/browser.err");
+  return r;
+}
+
 // Chromium writes console messages as "INFO:CONSOLE:1] \"message\"" (older builds:
 // "CONSOLE(1)"); uncaught exceptions also start with "Uncaught".
 bool has_console_output(const std::string& log) {
