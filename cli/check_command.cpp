@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 
+#include "cli/param_flags.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
 #include "machines/profile.h"
@@ -179,7 +180,7 @@ void add_check_command(CLI::App& app, Action& action) {
   sub->add_option("--svg-layer", a->svg_layer, "write a top view of layer N (0-based) to OUT.svg")
       ->expected(2)
       ->type_name("N OUT.svg");
-  sub->add_option("--arc-tolerance", a->arc_tolerance_mm,
+  add_quantity_option(sub, "--arc-tolerance", a->arc_tolerance_mm, "mm",
                   "chord error when arcs are flattened for the search [mm] (default 0.01)");
   sub->add_option("--substrate-mesh", a->substrate_mesh,
                   "a pose CSV's substrate mesh (default: the one its record part.substrate.json "

@@ -7,6 +7,7 @@
 
 #include "machines/gcode_format.h"
 #include "postprocess/plan/flow_model.h"
+#include "cli/param_flags.h"
 #include "cli/commands.h"
 #include "slicer/input_error.h"
 #include "slicer/params.h"
@@ -96,14 +97,14 @@ void add_flow_command(CLI::App& app, Action& action) {
   CLI::App* sub = app.add_subcommand("flow", "pneumatic syringe flow: pressure <-> print speed (Hagen-Poiseuille, power law)");
   auto a = std::make_shared<FlowArgs>();
   sub->add_option("--pressure-bar", a->pressure_bar, "pressure drop over the nozzle [bar] -> flow and speed");
-  sub->add_option("--speed", a->speed_mm_per_min, "wanted print speed [mm/min] -> flow and pressure");
+  add_quantity_option(sub, "--speed", a->speed_mm_per_min, "mm/min", "wanted print speed [mm/min] -> flow and pressure");
   sub->add_option("--viscosity-pa-s", a->viscosity_pa_s, "Newtonian viscosity mu [Pa.s]");
   sub->add_option("--k-pa-sn", a->k_pa_sn, "power-law consistency K [Pa.s^n]");
   sub->add_option("--n", a->n, "power-law index n (< 1 shear thinning)");
-  sub->add_option("--nozzle-mm", a->nozzle_mm, "nozzle inner diameter [mm]")->required();
-  sub->add_option("--nozzle-length-mm", a->nozzle_length_mm, "nozzle (needle) length [mm]")->required();
-  sub->add_option("--bead-width", a->bead_width_mm, "bead width [mm] (default nozzle)");
-  sub->add_option("--bead-height,--layer-height", a->bead_height_mm, "bead height [mm] (default 0.88 * nozzle)");
+  add_quantity_option(sub, "--nozzle-mm", a->nozzle_mm, "mm", "nozzle inner diameter [mm]")->required();
+  add_quantity_option(sub, "--nozzle-length-mm", a->nozzle_length_mm, "mm", "nozzle (needle) length [mm]")->required();
+  add_quantity_option(sub, "--bead-width", a->bead_width_mm, "mm", "bead width [mm] (default nozzle)");
+  add_quantity_option(sub, "--bead-height,--layer-height", a->bead_height_mm, "mm", "bead height [mm] (default 0.88 * nozzle)");
   sub->callback([&action, a] { action = [a] { return run_flow(*a); }; });
 }
 

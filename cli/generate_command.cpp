@@ -100,7 +100,7 @@ void add_generator_commands(CLI::App& app, Action& action) {
                     "G-code file to write (default " + spec.name +
                         ".gcode; a robot cell writes <name>.csv with <Class>.java, <module>.src/.dat, .extruder.gcode)");
     sub->add_option("--report", args->report, "write a JSON report here");
-    sub->add_option("--arc-tolerance", args->arc_tolerance_mm,
+    add_quantity_option(sub, "--arc-tolerance", args->arc_tolerance_mm, "mm",
                     "max chord error when arcs become G1 segments [mm] (default 0.01)");
     sub->add_flag("--viewer-e", args->viewer_e,
                   "also write <output>.viewer-e.gcode: computed E for viewers, not for printing");

@@ -1,6 +1,11 @@
 // Flags from parameter tables: help text, placeholders, and reading the given values.
 #include "cli/param_flags.h"
 
+#include <functional>
+#include <utility>
+
+#include "slicer/unit_values.h"
+
 namespace strand::cli {
 
 std::string help_for(const slicer::ParamDef& d) {
@@ -40,6 +45,33 @@ void add_param_flags(CLI::App* sub, const slicer::ParamTable& table, ParamFlags&
   for (const auto& d : table.defs) {
     flags.options[d.key] = sub->add_option("--" + d.key, flags.text[d.key], help_for(d))->type_name(type_name_for(d));
   }
+}
+
+namespace {
+
+CLI::Option* add_quantity(CLI::App* sub, const std::string& names, std::function<void(double)> set,
+                          const std::string& unit, const std::string& help) {
+  const std::string flag = names.substr(names.rfind(',') == std::string::npos ? 0 : names.rfind(',') + 1);
+  const auto read = [set = std::move(set), flag, unit](const std::string& text) {
+    const slicer::UnitValues v = slicer::parse_quantity(text, unit);
+    if (v.malformed) throw CLI::ValidationError(flag + " = " + text + ": must be a number, " + slicer::expected_units(unit));
+    if (!v.unit_problem.empty()) throw CLI::ValidationError(flag + " = " + text + ": " + v.unit_problem);
+    set(v.values.front());
+  };
+  return sub->add_option_function<std::string>(names, read, help)
+      ->type_name(unit == "mm" ? "MM" : unit == "mm/min" ? "MM_PER_MIN" : unit == "deg" ? "DEG" : "X");
+}
+
+}  // namespace
+
+CLI::Option* add_quantity_option(CLI::App* sub, const std::string& names, double& target, const std::string& unit,
+                                 const std::string& help) {
+  return add_quantity(sub, names, [&target](double v) { target = v; }, unit, help);
+}
+
+CLI::Option* add_quantity_option(CLI::App* sub, const std::string& names, std::optional<double>& target,
+                                 const std::string& unit, const std::string& help) {
+  return add_quantity(sub, names, [&target](double v) { target = v; }, unit, help);
 }
 
 nlohmann::json given_params(const slicer::ParamTable& table, const ParamFlags& flags) {

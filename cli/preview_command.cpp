@@ -1,9 +1,11 @@
 // `strand preview FILE.gcode -o OUT`: any G-code, through the parser, drawn as .png, .svg,
 // .html (interactive, self-contained) or .glb (3D), chosen by OUT's extension.
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
+#include "cli/param_flags.h"
 #include "cli/commands.h"
 #include "cli/output_path.h"
 #include "cli/progress.h"
@@ -50,17 +52,16 @@ post::ImageOptions image_options(const PreviewArgs& a) {
   } else {
     throw InputError("--view = " + a.view + ": must be top, iso or both");
   }
-  const auto x = a.size.find('x');
-  try {
-    std::size_t used = 0;
-    o.width_px = std::stoi(a.size.substr(0, x), &used);
-    o.height_px = x == std::string::npos ? 0 : std::stoi(a.size.substr(x + 1));
-  } catch (const std::exception&) {
-    o.width_px = 0;
+  // "1200x700", "1200 x 700 px": whole pixels, at most 100000 a side (the renderer's own
+  // bound on the area follows).
+  const slicer::UnitValues size = slicer::parse_quantities(a.size, "px", 'x');
+  const auto whole = [](double v) { return v >= 1.0 && v <= 100000.0 && v == std::floor(v); };
+  if (!size.ok() || size.values.size() != 2 || !whole(size.values[0]) || !whole(size.values[1])) {
+    throw InputError("--size = " + a.size + ": must be WxH in whole pixels, each in [1, 100000], e.g. 1200x700" +
+                     (size.unit_problem.empty() ? "" : " (" + size.unit_problem + ")"));
   }
-  if (x == std::string::npos || o.width_px <= 0 || o.height_px <= 0) {
-    throw InputError("--size = " + a.size + ": must be WxH in pixels, e.g. 1200x700");
-  }
+  o.width_px = static_cast<int>(size.values[0]);
+  o.height_px = static_cast<int>(size.values[1]);
   o.layer = a.layer;
   o.travel = a.travel;
   return o;
@@ -137,7 +138,7 @@ void add_preview_command(CLI::App& app, Action& action) {
   sub->add_flag("--marks", a->marks, "circle crossings (red) and touches (orange) found by strand check (png/svg)");
   sub->add_flag("--lines", a->lines, "glb: strands as lines instead of tubes");
   sub->add_option("--size", a->size, "image size WxH in pixels (png/svg; default 1200x700)");
-  sub->add_option("--arc-tolerance", a->arc_tolerance_mm, "chord error when drawing G2/G3 arcs [mm] (default 0.01)");
+  add_quantity_option(sub, "--arc-tolerance", a->arc_tolerance_mm, "mm", "chord error when drawing G2/G3 arcs [mm] (default 0.01)");
   sub->callback([&action, a] { action = [a] { return run(*a); }; });
 }
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 
+#include "cli/param_flags.h"
 #include "cli/commands.h"
 #include "cli/output_path.h"
 #include "cli/progress.h"
@@ -209,7 +210,7 @@ void add_slice_command(CLI::App& app, Action& action) {
   sub->add_option("--preview", a->previews,
                   "also draw the result with the mesh under it, translucent: .png, .svg, .html "
                   "(3D orbit view) or .glb (repeatable)");
-  sub->add_option("--arc-tolerance", s.arc_tolerance_mm,
+  add_quantity_option(sub, "--arc-tolerance", s.arc_tolerance_mm, "mm",
                   "max chord error when arcs become G1 segments [mm] (default 0.01)");
   sub->callback([&action, a] { action = [a] { return run_slice(*a); }; });
 }

@@ -17,6 +17,7 @@
 #include "slicer/mesh_slicer.h"
 #include "slicer/mesh_surface.h"
 #include "slicer/params.h"
+#include "slicer/unit_values.h"
 
 namespace strand::cli {
 
@@ -322,24 +323,12 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
 }  // namespace
 
 double scale_to_fit(const slicer::Vec3& size_mm, const std::string& box) {
-  std::vector<double> v;
-  std::size_t at = 0;
-  bool ok = true;
-  while (ok && at <= box.size()) {
-    const std::size_t x = std::min(box.find('x', at), box.size());
-    const std::string part = box.substr(at, x - at);
-    try {
-      std::size_t used = 0;
-      v.push_back(std::stod(part, &used));
-      ok = used == part.size() && v.back() > 0.0 && v.back() <= 100000.0;
-    } catch (const std::exception&) {
-      ok = false;
-    }
-    at = x + 1;
-  }
-  if (!ok || v.size() != 3) {
-    throw InputError("slice.scale-to-fit = " + box +
-                     ": must be WxDxH in mm, each in (0, 100000], e.g. 30x30x30");
+  // "30x30x30", "3 x 3 x 3 cm", "30mm x 30mm x 1in" (slicer/unit_values.h).
+  const slicer::UnitValues given = slicer::parse_quantities(box, "mm", 'x');
+  const std::vector<double>& v = given.values;
+  if (!given.ok() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](double d) { return d > 0.0 && d <= 100000.0; })) {
+    throw InputError("slice.scale-to-fit = " + box + ": must be WxDxH in mm, each in (0, 100000], e.g. 30x30x30" +
+                     (given.unit_problem.empty() ? "" : " (" + given.unit_problem + ")"));
   }
   double f = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 3; ++k) {
@@ -350,23 +339,12 @@ double scale_to_fit(const slicer::Vec3& size_mm, const std::string& box) {
 }
 
 slicer::Vec3 rotation_from_text(const std::string& text) {
-  std::vector<double> v;
-  std::size_t at = 0;
-  bool ok = true;
-  while (ok && at <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', at), text.size());
-    const std::string part = text.substr(at, comma - at);
-    try {
-      std::size_t used = 0;
-      v.push_back(std::stod(part, &used));
-      ok = used == part.size() && std::isfinite(v.back()) && std::abs(v.back()) <= 360.0;
-    } catch (const std::exception&) {
-      ok = false;
-    }
-    at = comma + 1;
-  }
-  if (!ok || v.size() != 3) {
-    throw InputError("slice.rotate = " + text + ": must be X,Y,Z in degrees, each in [-360, 360]");
+  // "90,0,0", "0,0,1.5708rad", "0, 0, 45 deg" (slicer/unit_values.h).
+  const slicer::UnitValues given = slicer::parse_quantities(text, "deg", ',');
+  const std::vector<double>& v = given.values;
+  if (!given.ok() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](double d) { return std::abs(d) <= 360.0; })) {
+    throw InputError("slice.rotate = " + text + ": must be X,Y,Z in degrees, each in [-360, 360]" +
+                     (given.unit_problem.empty() ? "" : " (" + given.unit_problem + ")"));
   }
   return {v[0], v[1], v[2]};
 }

@@ -159,7 +159,8 @@ TEST(Hostile, CheckOfADirectoryIsBadInput) {
 TEST(Hostile, FlowRefusesInfiniteSpeedAndATallBead) {
   const auto dir = fresh_dir("hostile-flow");
   const std::string ink = "flow --viscosity-pa-s 10 --nozzle-mm 0.84 --nozzle-length-mm 12 ";
-  expect_input_error(run_strand(ink + "--speed inf", dir), "flow.speed = inf: must be a finite number > 0");
+  expect_input_error(run_strand(ink + "--speed inf", dir), "--speed = inf: must be a number, a speed (mm/min, mm/s)");
+  expect_input_error(run_strand(ink + "--speed -5", dir), "flow.speed = -5: must be a finite number > 0");
   expect_input_error(run_strand(ink + "--speed 250 --bead-width 0.5 --bead-height 0.8", dir),
                      "flow.bead-height = 0.8: must be <= bead width 0.5");
 }

@@ -126,5 +126,54 @@ TEST(UnitsCli, ChoicesInAnyCase) {
                      "plot.text = gothic: must be one of hershey, outline, none");
 }
 
+// Flags outside the parameter tables take units too: slice's --rotate, --scale-to-fit and
+// --arc-tolerance, preview's --size, flow's lengths and speed.
+TEST(UnitsCli, FlagsOutsideTheTablesTakeUnits) {
+  const auto dir = fresh_dir("units-flags");
+  const std::string mesh = std::string(STRAND_SOURCE_DIR) + "/samples/meshes/sphere-cap.stl";
+  const std::string slice = "slice '" + mesh + "' --nozzle 0.6 --gap 1 ";
+  const auto plain = run_strand(slice + "--scale-to-fit 30x30x10 --rotate 0,0,90 --arc-tolerance 0.02 -o plain.gcode", dir);
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const auto units = run_strand(slice + "--scale-to-fit '3 x 3 x 1 cm' --rotate '0,0,1.5707963267948966rad' "
+                                        "--arc-tolerance 20um -o units.gcode", dir);
+  ASSERT_EQ(units.exit_code, 0) << units.err;
+  // Only the echoed parameters differ.
+  const auto strip = [](std::string g) {
+    std::string out;
+    std::size_t at = 0;
+    while (at < g.size()) {
+      const std::size_t end = std::min(g.find('\n', at), g.size());
+      const std::string line = g.substr(at, end - at);
+      if (line.rfind("; param rotate", 0) != 0 && line.rfind("; param scale-to-fit", 0) != 0) out += line + "\n";
+      at = end + 1;
+    }
+    return out;
+  };
+  const std::string a = slurp(dir + "/plain.gcode");
+  EXPECT_GT(a.size(), 1000u);
+  EXPECT_EQ(strip(slurp(dir + "/units.gcode")), strip(a));
+  expect_input_error(run_strand(slice + "--rotate 0,0,1mm -o x.gcode", dir),
+                     "slice.rotate = 0,0,1mm: must be X,Y,Z in degrees, each in [-360, 360] (expected an angle (deg, rad))");
+  expect_input_error(run_strand(slice + "--arc-tolerance 3mm/s -o x.gcode", dir),
+                     "--arc-tolerance = 3mm/s: expected a length (mm, cm, m, um, in)");
+  EXPECT_FALSE(exists(dir + "/x.gcode"));
+
+  const auto px = run_strand("preview plain.gcode --size '400 x 300 px' --view top -o px.png", dir);
+  ASSERT_EQ(px.exit_code, 0) << px.err;
+  const auto bare = run_strand("preview plain.gcode --size 400x300 --view top -o bare.png", dir);
+  ASSERT_EQ(bare.exit_code, 0) << bare.err;
+  EXPECT_EQ(slurp(dir + "/px.png"), slurp(dir + "/bare.png"));
+  expect_input_error(run_strand("preview plain.gcode --size 400mmx300mm -o mm.png", dir),
+                     "--size = 400mmx300mm: must be WxH in whole pixels, each in [1, 100000], e.g. 1200x700");
+
+  const std::string flow = "flow --viscosity-pa-s 10 ";
+  const auto mm = run_strand(flow + "--nozzle-mm 0.84 --nozzle-length-mm 12.7 --speed 300", dir);
+  const auto si = run_strand(flow + "--nozzle-mm 840um --nozzle-length-mm 0.5in --speed 5mm/s", dir);
+  ASSERT_EQ(mm.exit_code, 0) << mm.err;
+  EXPECT_EQ(si.out, mm.out);
+  expect_input_error(run_strand(flow + "--nozzle-mm 3mm/s --nozzle-length-mm 12 --speed 5", dir),
+                     "--nozzle-mm = 3mm/s: expected a length (mm, cm, m, um, in)");
+}
+
 }  // namespace
 }  // namespace strand::testing
