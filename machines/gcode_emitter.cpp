@@ -71,9 +71,11 @@ class Writer {
     for (const auto& line : m_.start_gcode) out_ += expand(line, m_) + "\n";
     preamble();
     at_ = p.start_mm;
+    std::size_t written = 0;
     for (const auto& mv : p.moves) {
       write(mv, p);
       if (sink_ && out_.size() >= kFlushBytes) flush();
+      if ((++written & 0xfffu) == 0) slicer::progress_step(o_.progress, written);
     }
     close_flow();
     out_ += ";TYPE:Custom\n";

@@ -8,6 +8,7 @@
 
 #include "machines/profile.h"
 #include "slicer/motion.h"
+#include "slicer/progress.h"
 
 namespace strand::machines {
 
@@ -16,6 +17,9 @@ struct EmitOptions {
   // Preview-only copy: write computed relative E even where the machine takes none, so
   // viewers that colour by extrusion show deposits. Never for printing.
   bool viewer_e = false;
+  // Told how many of the program's moves are written (a step every few thousand), for the
+  // progress bar's time left; may be null.
+  slicer::Progress* progress = nullptr;
 };
 
 std::string emit_gcode(const slicer::MotionProgram& program, const MachineProfile& machine,

@@ -67,7 +67,8 @@ Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram progra
   out.summary = summary_text(out.report);
   machines::EmitOptions eo;
   eo.header = header(t, m, options, out.report);
-  slicer::progress_phase(progress, "writing G-code");
+  slicer::progress_phase(progress, "writing G-code", out.program.moves.size());
+  eo.progress = progress;
   if (streams.gcode) {
     machines::emit_gcode(out.program, m, eo, *streams.gcode);
   } else {
@@ -75,6 +76,7 @@ Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram progra
   }
   if (viewer_e) {
     eo.viewer_e = true;
+    eo.progress = nullptr;
     if (streams.viewer_gcode) {
       machines::emit_gcode(out.program, m, eo, *streams.viewer_gcode);
     } else {
