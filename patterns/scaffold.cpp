@@ -153,6 +153,13 @@ Stroke serpentine(const LayerLines& L, const Rect& grown, bool reverse_order, bo
   return s;
 }
 
+// Where serpentine(L, grown, reverse_order, flip) starts, without building it.
+Vec2 serpentine_start(const LayerLines& L, bool reverse_order, bool flip) {
+  if (L.ends.empty()) return Vec2::Zero();
+  const auto& [lo, hi] = reverse_order ? L.ends.back() : L.ends.front();
+  return flip ? hi : lo;
+}
+
 // Link from `from` (end of the previous layer) to `to` (start of this one), outside.
 std::vector<Segment> link(const Rect& grown, double clearance, const Vec2& from, const Vec2& to) {
   std::vector<Segment> out;
@@ -197,20 +204,20 @@ slicer::Toolpath generate_scaffold(const ScaffoldParams& p) {
     const double angle = p.angles_deg[static_cast<std::size_t>(k) % p.angles_deg.size()];
     const LayerLines lines = layer_lines(p, g, angle);
     inside_length += lines.inside_length_mm;
-    Stroke best;
+    // The variant starting nearest the previous layer's end; only that one is built.
+    int best = 0;
     double best_gap = std::numeric_limits<double>::infinity();
     const Vec2 prev_end = k == 0 ? Vec2::Zero() : t.layers.back().strokes.back().end_mm();
-    for (int variant = 0; variant < (k == 0 ? 1 : 4); ++variant) {
-      Stroke s = serpentine(lines, grown, variant & 1, variant & 2);
-      const double gap = (s.start_mm - prev_end).norm();
-      if (gap < best_gap - 1e-9) best_gap = gap, best = s;
+    for (int variant = 0; variant < (k == 0 || lines.ends.empty() ? 1 : 4); ++variant) {
+      const double gap = (serpentine_start(lines, variant & 1, variant & 2) - prev_end).norm();
+      if (gap < best_gap - 1e-9) best_gap = gap, best = variant;
     }
-    Stroke stroke = best;
+    Stroke stroke = serpentine(lines, grown, best & 1, best & 2);
     if (k > 0) {
-      std::vector<Segment> segs = link(grown, g.link_clearance_mm, prev_end, best.start_mm);
-      segs.insert(segs.end(), best.segments.begin(), best.segments.end());
+      std::vector<Segment> segs = link(grown, g.link_clearance_mm, prev_end, stroke.start_mm);
+      segs.insert(segs.end(), stroke.segments.begin(), stroke.segments.end());
       stroke.start_mm = prev_end;
-      stroke.segments = segs;
+      stroke.segments = std::move(segs);
     }
     stroke.width_mm = p.nozzle_mm;
     stroke.height_mm = p.layer_height_mm;
