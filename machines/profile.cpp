@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <mutex>
 
 #include "machines/builtin_profiles.h"
 #include "machines/profile_schema.h"
@@ -198,6 +199,11 @@ std::string user_profile_file(const std::string& name) {
 
 }  // namespace
 
+namespace {
+// Profiles kept parsed (a few kilobytes each); the cache starts over when full.
+constexpr std::size_t kProfileCacheEntries = 32;
+}  // namespace
+
 MachineProfile load_profile(const std::string& name_or_path) {
   const bool is_path = name_or_path.find('/') != std::string::npos ||
                        (name_or_path.size() > 5 && name_or_path.ends_with(".json"));
@@ -222,8 +228,21 @@ MachineProfile load_profile(const std::string& name_or_path) {
     }
     text = it->json;
   }
+  // A sweep loads the same profile for every point: the parsed and checked profile is kept,
+  // keyed by the name and the exact text read (an edited file is read anew).
+  static std::mutex cache_mutex;
+  static std::map<std::string, MachineProfile> cache;
+  const std::string key = name_or_path + '\0' + text;
+  {
+    const std::lock_guard<std::mutex> lock(cache_mutex);
+    if (const auto hit = cache.find(key); hit != cache.end()) return hit->second;
+  }
   const nlohmann::json j = slicer::parse_json(text, "machine = " + name_or_path);
-  return profile_from_json(j, "machine " + name_or_path);
+  MachineProfile profile = profile_from_json(j, "machine " + name_or_path);
+  const std::lock_guard<std::mutex> lock(cache_mutex);
+  if (cache.size() >= kProfileCacheEntries) cache.clear();
+  cache.emplace(key, profile);
+  return profile;
 }
 
 std::vector<ProfileEntry> profile_catalog() {
