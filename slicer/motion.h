@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "slicer/geometry.h"
+#include "slicer/large_allocator.h"
 #include "slicer/toolpath.h"
 
 namespace strand::slicer {
@@ -50,7 +51,7 @@ struct LayerInfo {
 };
 
 struct MotionProgram {
-  std::vector<Move> moves;
+  LargeVector<Move> moves;  // millions in large jobs: huge pages (large_allocator.h)
   std::vector<LayerInfo> layers;
   std::vector<std::string> texts;  // Raw moves' text: one or more lines, no trailing newline
   std::vector<double> dwells_s;    // Dwell moves' waiting time, s

@@ -19,7 +19,7 @@ double seconds(const slicer::Vec3& from, const Move& mv) {
 }
 
 // Moves [first, last) are one strand; `starts[i]` is where move i begins.
-void lag_strand(std::vector<Move>& out, const std::vector<Move>& in,
+void lag_strand(slicer::LargeVector<Move>& out, const slicer::LargeVector<Move>& in,
                 const std::vector<slicer::Vec3>& starts, std::size_t first, std::size_t last,
                 double lag_s) {
   double total = 0.0;
@@ -64,7 +64,7 @@ void apply_valve_lag(slicer::MotionProgram& p, double lag_s) {
     starts.push_back(at);
     if (mv.kind == MoveKind::Travel || mv.kind == MoveKind::Deposit) at = mv.end_mm;
   }
-  std::vector<Move> out;
+  slicer::LargeVector<Move> out;
   out.reserve(p.moves.size() + p.moves.size() / 8);
   std::size_t i = 0;
   while (i < p.moves.size()) {

@@ -20,7 +20,7 @@ slicer::Move line(double x, double y, double feed, slicer::MoveKind kind = slice
 slicer::MotionProgram program(std::vector<slicer::Move> moves) {
   slicer::MotionProgram p;
   p.layers = {{0.0, 0.5}};
-  p.moves = std::move(moves);
+  p.moves.assign(moves.begin(), moves.end());
   return p;
 }
 

@@ -26,6 +26,9 @@ struct TracedImage {
 // `progress` (may be null) is told the phases: decoding, tracing.
 TracedImage trace_file(const std::string& path, const slicer::TraceOptions& o,
                        slicer::Progress* progress = nullptr);
+// The same for an image already in memory; `label` names it in messages.
+TracedImage trace_bytes(const std::string& bytes, const std::string& label, const slicer::TraceOptions& o,
+                        slicer::Progress* progress = nullptr);
 
 // The layers as an imported drawing (what `strand plot` lays out).
 slicer::SvgDrawing drawing_of(const std::vector<slicer::SvgLayer>& layers, const slicer::Vec2& size_mm);

@@ -1,5 +1,5 @@
 // Trace flags, tracing a file into pen layers, and those layers as a drawing.
-#include "cli/trace_input.h"
+#include "jobs/trace_input.h"
 
 #include <charconv>
 #include <cmath>
@@ -80,8 +80,13 @@ slicer::TraceOptions trace_options(const nlohmann::json& v) {
 
 TracedImage trace_file(const std::string& path, const slicer::TraceOptions& o,
                        slicer::Progress* progress) {
+  return trace_bytes(slicer::read_file(path), path, o, progress);
+}
+
+TracedImage trace_bytes(const std::string& bytes, const std::string& label, const slicer::TraceOptions& o,
+                        slicer::Progress* progress) {
   slicer::progress_phase(progress, "decoding");
-  const slicer::GreyImage image = slicer::decode_image(slicer::read_file(path), path);
+  const slicer::GreyImage image = slicer::decode_image(bytes, label);
   TracedImage t;
   slicer::progress_phase(progress, "tracing");
   t.trace = slicer::trace_image(image, o);

@@ -1,5 +1,5 @@
 // Layout, ordering, planning, emission, report and summary of one plot.
-#include "cli/plot_pipeline.h"
+#include "jobs/plot_pipeline.h"
 
 #include <sstream>
 
