@@ -56,6 +56,15 @@ int PointGrid::cell_y(double y) const {
   return static_cast<int>(std::clamp(std::floor((y - lo_.y()) / cell_), 0.0, ny_ - 1.0));
 }
 
+std::vector<int> PointGrid::ids_by_cell() const {
+  std::vector<int> out;
+  out.reserve(ids_.size());
+  for (std::size_t c = 0; c < count_.size(); ++c) {
+    out.insert(out.end(), ids_.begin() + start_[c], ids_.begin() + start_[c] + count_[c]);
+  }
+  return out;
+}
+
 void PointGrid::forget(int id) {
   const std::size_t c = cell_of(points_[id]);
   const std::uint32_t first = start_[c], last = start_[c] + count_[c];

@@ -28,8 +28,8 @@ class PointGrid {
   int nearest(const slicer::Vec2& q, Alive alive) const {
     return search(q, -1.0, alive);
   }
-  // The same, but only the rings of cells that reach within radius_mm of q are read: the
-  // result is the nearest point when that one is within radius_mm (the caller checks).
+  // The same, but only the cells that reach within radius_mm of q are read: the result is
+  // the nearest point when that one is within radius_mm (the caller checks).
   template <class Alive>
   int nearest_within(const slicer::Vec2& q, double radius_mm, Alive alive) const {
     return search(q, radius_mm, alive);
@@ -40,6 +40,9 @@ class PointGrid {
   int k_nearest(const slicer::Vec2& q, int k, Skip skip, int* out) const;
   // Removes `id` from its cell.
   void forget(int id);
+  // The live ids cell by cell (rows of cells bottom up, ids rising within a cell): an order in
+  // which points near each other mostly sit near each other.
+  std::vector<int> ids_by_cell() const;
 
  private:
   int cell_x(double x) const;
@@ -80,19 +83,32 @@ int PointGrid::search(const slicer::Vec2& q, double radius_mm, Alive alive) cons
   const int cx = cell_x(q.x()), cy = cell_y(q.y());
   int best = -1;
   double best_d = 0.0;
+  const auto consider = [&](int id) {
+    if (!alive(id)) return;
+    const double d = (points_[id] - q).squaredNorm();
+    if (best < 0 || d < best_d || (d == best_d && id < best)) {
+      best = id;
+      best_d = d;
+    }
+  };
+  if (radius_mm >= 0 && radius_mm < cell_) {
+    // A short reach: only the (at most four) cells the square around q touches can hold a
+    // point within radius_mm, usually q's own cell alone.
+    const int x1 = cell_x(q.x() + radius_mm), y1 = cell_y(q.y() + radius_mm);
+    for (int y = cell_y(q.y() - radius_mm); y <= y1; ++y) {
+      for (int x = cell_x(q.x() - radius_mm); x <= x1; ++x) {
+        const std::size_t c = static_cast<std::size_t>(y) * nx_ + x;
+        for (std::uint32_t i = start_[c]; i < start_[c] + count_[c]; ++i) consider(ids_[i]);
+      }
+    }
+    return best;
+  }
   const int max_ring = std::max(nx_, ny_) + std::max(std::abs(cx), std::abs(cy)) + 1;
   for (int r = 0; r <= max_ring; ++r) {
     // Every point in ring r is at least (r - 1) * cell away from q.
     if (best >= 0 && (r - 1) * cell_ > std::sqrt(best_d)) break;
     if (radius_mm >= 0 && (r - 1) * cell_ > radius_mm) break;
-    ring(cx, cy, r, [&](int id) {
-      if (!alive(id)) return;
-      const double d = (points_[id] - q).squaredNorm();
-      if (best < 0 || d < best_d || (d == best_d && id < best)) {
-        best = id;
-        best_d = d;
-      }
-    });
+    ring(cx, cy, r, consider);
   }
   return best;
 }

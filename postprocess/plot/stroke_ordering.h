@@ -1,9 +1,9 @@
 // Ordering pen strokes to cut pen-up travel: merge strokes whose ends meet, then per pen a
-// nearest-neighbour tour on a grid index, improved by 2-opt and Or-opt moves over
-// k-nearest-neighbour candidate lists. Distances are measured in the machine's axis space
-// (cable lengths, R/theta screws), where straight-line distance is proportional to travel
-// time; for XY plotters that is the paper itself. Deterministic: fixed evaluation budget,
-// ties broken by index. Never drops or duplicates a stroke.
+// greedy start tour (shortest gaps first, chains joined nearest-first), improved by 2-opt and
+// Or-opt moves over k-nearest-neighbour candidate lists. Distances are measured in the
+// machine's axis space (cable lengths, R/theta screws), where straight-line distance is
+// proportional to travel time; for XY plotters that is the paper itself. Deterministic: fixed
+// evaluation budget, ties broken by index. Never drops or duplicates a stroke.
 #pragma once
 
 #include <functional>
@@ -21,9 +21,10 @@ struct OrderOptions {
   MetricMap metric;                             // empty = identity
   int neighbours = 12;                          // candidate list length per endpoint
   double evaluations_per_stroke = 200.0;        // improvement budget (deterministic)
-  // Strokes a single move may shift or reverse: bounds the cost of one move (the array tour
-  // pays per position), wide enough for the long-range fixes a nearest-neighbour tour needs.
-  int max_move_span = 50000;
+  // Strokes a single move may shift or reverse: bounds the cost of one move (the tour pays
+  // per position moved, on the shorter side of its ring). 30,000 keeps most of the long-range
+  // fixes (100k random lines: 63.7 m pen-up at 0.92 s, 62.5 m at 1.02 s unbounded).
+  int max_move_span = 30000;
 };
 
 // Joins strokes of the same tool whose end and start lie within join_mm of each other

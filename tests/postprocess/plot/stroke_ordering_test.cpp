@@ -84,6 +84,34 @@ TEST(Ordering, MetricSpaceDrivesTheChoice) {
   EXPECT_EQ(out[0].start_mm, b.start_mm);
 }
 
+TEST(Ordering, TurnsStrokesRoundExactlyAsReversedDoes) {
+  // Arcs and lines: a stroke drawn the other way must equal slicer::reversed of the input,
+  // and only reversible ones are turned round.
+  std::vector<Stroke> in;
+  for (int i = 0; i < 200; ++i) {
+    Stroke s;
+    s.start_mm = Vec2(3.0 * (i % 20), 7.0 * (i / 20));
+    s.segments.push_back(slicer::line_to(s.start_mm + Vec2(1, 0), slicer::Feature::Pen));
+    s.segments.push_back(slicer::arc_to(s.start_mm + Vec2(2, 1), s.start_mm + Vec2(1, 1),
+                                        i % 2 == 0, slicer::Feature::Pen));
+    s.reversible = i % 3 != 0;
+    in.push_back(s);
+  }
+  int turned = 0;
+  for (const auto& s : order_strokes(in, OrderOptions{})) {
+    const bool found = std::any_of(in.begin(), in.end(), [&](const Stroke& t) {
+      if (t == s) return true;
+      if (slicer::reversed(t) == s) {
+        EXPECT_TRUE(t.reversible);
+        return ++turned, true;
+      }
+      return false;
+    });
+    EXPECT_TRUE(found);
+  }
+  EXPECT_GT(turned, 0);
+}
+
 TEST(Merging, JoinsStrokesWhoseEndsMeetInEitherDirection) {
   Stroke a, b, c;
   a.start_mm = Vec2(0, 0);
