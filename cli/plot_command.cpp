@@ -7,9 +7,10 @@
 #include "cli/commands.h"
 #include "cli/output_path.h"
 #include "cli/param_flags.h"
-#include "cli/plot_pipeline.h"
 #include "cli/progress.h"
-#include "cli/trace_input.h"
+#include "jobs/plot_options.h"
+#include "jobs/plot_pipeline.h"
+#include "jobs/trace_input.h"
 #include "machines/erase_pattern.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -21,80 +22,17 @@ namespace strand::cli {
 
 namespace {
 
-const slicer::ParamTable& plot_table() {
-  using slicer::ParamType;
-  static const slicer::ParamTable kTable{
-      "plot",
-      {
-          {"fit", ParamType::Size2, "mm", "fit the drawing into WxH, or a paper (A0-A6, letter, legal, tabloid; portrait, or add landscape: \"A4 landscape\"), keeping its aspect, centred in the drawable area", 1e-3, false, std::nullopt, false, nullptr, "", {}, true},
-          {"scale", ParamType::Number, "", "times the SVG's physical size (ignored with --fit)", 0.0, true, 1e4, false, 1.0},
-          {"offset", ParamType::NumberList, "mm", "X,Y shift after centring", std::nullopt, false, std::nullopt, false, nlohmann::json::array({0, 0})},
-          {"tolerance", ParamType::Number, "mm", "end-to-end error bound: curve flattening + kinematic bow + rounding", 0.001, false, 5.0, false, 0.05},
-          {"pens", ParamType::Text, "", "pen rules KEY=PEN,... (KEY: group id, Inkscape layer label or colour); default: groups m1..m4 -> pens 1..4, else pen 1", std::nullopt, false, std::nullopt, false, ""},
-          {"fill", ParamType::Text, "", "what a filled shape gets: its outline plus hatch lines or concentric rings, its outline only, or nothing", std::nullopt, false, std::nullopt, false, "hatch", "", {"hatch", "concentric", "outline", "none"}},
-          {"hatch-angle", ParamType::NumberList, "deg", "angle of the hatch lines, one value or one per pen (pen 1 first, the last repeats)", -180.0, false, 180.0, false, nlohmann::json::array({45})},
-          {"text", ParamType::Text, "", "how <text> is drawn: single-stroke Hershey font, the outline font the drawing names (fontconfig), or not at all", std::nullopt, false, std::nullopt, false, "hershey", "", {"hershey", "outline", "none"}},
-          {"font", ParamType::Text, "", "hershey:NAME for --text hershey (futural, rowmans, scripts, timesr, ...); an installed family for --text outline (replaces the drawing's)", std::nullopt, false, std::nullopt, false, nullptr, "hershey:futural, or the drawing's own fonts"},
-          {"text-width", ParamType::Text, "", "--text hershey: each glyph's own advance, or every run scaled across (not up) to the advance of the font the drawing names (fontconfig, FreeType) so lines stay as long as a browser draws them", std::nullopt, false, std::nullopt, false, "natural", "", {"natural", "fit"}},
-          {"hatch-spacing", ParamType::NumberList, "mm", "distance between hatch lines or concentric rings, one value or one per pen", 0.0, true, std::nullopt, false, nullptr, "the pen width"},
-      }};
-  return kTable;
-}
-
 struct PlotArgs {
   std::string svg, machine = "xy-plotter-servo", output, report, erase;
   bool mirror = false, no_order = false, trace = false;
   ParamFlags flags, trace_flags;
 };
 
-post::PlotOptions plot_options(const nlohmann::json& v, const PlotArgs& a) {
-  if (v.at("offset").size() != 2) throw InputError("plot.offset: must be X,Y (mm)");
-  post::PlotOptions o;
-  if (v.contains("fit")) o.fit_mm = slicer::Vec2(v["fit"][0].get<double>(), v["fit"][1].get<double>());
-  o.scale = v.at("scale").get<double>();
-  o.offset_mm = slicer::Vec2(v["offset"][0].get<double>(), v["offset"][1].get<double>());
-  o.tolerance_mm = v.at("tolerance").get<double>();
-  o.pens = v.at("pens").get<std::string>();
-  o.fill = post::fill_style_from_string(v.at("fill").get<std::string>());
-  o.hatch_angle_deg = v.at("hatch-angle").get<std::vector<double>>();
-  if (v.contains("hatch-spacing")) o.hatch_spacing_mm = v.at("hatch-spacing").get<std::vector<double>>();
-  o.mirror = a.mirror;
-  o.order = !a.no_order;
-  return o;
-}
-
-slicer::TextOptions text_options(const nlohmann::json& v) {
-  slicer::TextOptions t;
-  t.mode = slicer::text_mode_from_string(v.at("text").get<std::string>());
-  if (v.contains("font")) t.font = v.at("font").get<std::string>();
-  const bool hershey = !slicer::hershey_name(t.font).empty();
-  if (t.mode == slicer::TextMode::Hershey && !t.font.empty() && !hershey) {
-    throw InputError("plot.font = " + t.font + ": --text hershey needs hershey:NAME (or use --text outline for installed fonts)");
-  }
-  if (t.mode == slicer::TextMode::Outline && hershey) {
-    throw InputError("plot.font = " + t.font + ": a Hershey font is single-stroke; use --text hershey with it");
-  }
-  t.fit_width = v.at("text-width").get<std::string>() == "fit";
-  if (t.fit_width && t.mode == slicer::TextMode::Outline) {
-    throw InputError("plot.text-width = fit: applies to --text hershey (outline letters have the font's own widths)");
-  }
-  return t;
-}
-
-// The image traced into pen layers; unless the user chose hatch angles, level k hatches at
-// 45 + 180 (k - 1) / N degrees so that darker areas, covered by more levels, cross-hatch.
+// The image traced into pen layers (plot_options.h: use_traced).
 void read_traced(const PlotArgs& a, PlotRequest& r, slicer::Progress* progress) {
   const nlohmann::json tv = slicer::resolve_params(trace_table(), given_params(trace_table(), a.trace_flags));
   const TracedImage t = trace_file(a.svg, trace_options(tv), progress);
-  if (t.layers.empty()) throw InputError("trace: " + a.svg + " has no pixel darker than the threshold (try --threshold)");
-  r.drawing = drawing_of(t.layers, t.trace.size_mm);
-  r.parameters["trace"] = tv;
-  r.notes.emplace_back("traced", t.summary);
-  if (a.flags.options.at("hatch-angle")->count() == 0) {
-    r.options.hatch_angle_deg.clear();
-    const int n = static_cast<int>(t.trace.levels.size());
-    for (int k = 0; k < n; ++k) r.options.hatch_angle_deg.push_back(45.0 + 180.0 * k / n);
-  }
+  use_traced(r, t, tv, a.flags.options.at("hatch-angle")->count() > 0, a.svg);
 }
 
 int run_plot(PlotArgs a) {
@@ -102,7 +40,7 @@ int run_plot(PlotArgs a) {
   const auto progress = command_progress("plot", a.trace ? 7 : 6);
   PlotRequest r;
   r.parameters = slicer::resolve_params(plot_table(), given_params(plot_table(), a.flags));
-  r.options = plot_options(r.parameters, a);
+  r.options = plot_options(r.parameters, a.mirror, !a.no_order);
   r.input = a.svg;
   const machines::MachineProfile m = machines::load_profile(a.machine);
   if (a.trace) {

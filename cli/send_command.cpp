@@ -15,10 +15,10 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "jobs/send_estimate.h"
 #include "machines/gcode_format.h"
 #include "machines/send/resume.h"
 #include "machines/send/sender.h"
-#include "postprocess/inspect/gcode_parser.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 
@@ -51,29 +51,6 @@ machines::Firmware firmware_of(const SendArgs& a, const machines::MachineProfile
   return m ? m->firmware : machines::Firmware::Marlin;
 }
 
-// Seconds still to run after each file line, from the file's own moves (distance / feed
-// plus dwells): the progress bar's time left.
-std::map<int, double> time_left_after(const std::string& text) {
-  const post::ParsedGcode parsed = post::parse_gcode(text);
-  std::map<int, double> per_line;
-  slicer::Vec3 at = parsed.program.start_mm;
-  double total = 0.0;
-  for (std::size_t i = 0; i < parsed.program.moves.size(); ++i) {
-    const auto& mv = parsed.program.moves[i];
-    double t = 0.0;
-    if (mv.kind == slicer::MoveKind::Dwell) t = slicer::dwell_seconds(parsed.program, mv);
-    if (mv.kind == slicer::MoveKind::Travel || mv.kind == slicer::MoveKind::Deposit) {
-      if (mv.feed_mm_per_min > 0) t = (mv.end_mm - at).norm() / (mv.feed_mm_per_min / 60.0);
-      at = mv.end_mm;
-    }
-    per_line[parsed.move_lines[i]] += t;
-    total += t;
-  }
-  std::map<int, double> left;
-  for (const auto& [line, t] : per_line) left[line] = (total -= t);
-  return left;
-}
-
 std::string hms_text(double s) {
   const long v = static_cast<long>(s + 0.5);
   return std::to_string(v / 3600) + "h" + (v / 60 % 60 < 10 ? "0" : "") +
@@ -85,9 +62,7 @@ void draw_progress(const machines::Streamer& s, const std::vector<machines::Comm
                    const std::map<int, double>& left) {
   const double f = s.total() ? static_cast<double>(s.acknowledged()) / s.total() : 1.0;
   const int line = s.acknowledged() > 0 ? cmds[s.acknowledged() - 1].file_line : 0;
-  const auto it = left.upper_bound(line);
-  const double rest =
-      it == left.begin() ? (left.empty() ? 0.0 : left.begin()->second) : std::prev(it)->second;
+  const double rest = time_left_at(left, line);
   const int bar = static_cast<int>(f * 30);
   std::cerr << "\r[" << std::string(bar, '#') << std::string(30 - bar, ' ') << "] "
             << machines::fmt_fixed(100 * f, 0) << "% line " << line << ", " << hms_text(rest)

@@ -7,7 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/param_flags.h"
-#include "cli/plot_pipeline.h"
+#include "jobs/plot_pipeline.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"

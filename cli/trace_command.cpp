@@ -7,7 +7,7 @@
 #include "cli/output_path.h"
 #include "cli/param_flags.h"
 #include "cli/progress.h"
-#include "cli/trace_input.h"
+#include "jobs/trace_input.h"
 #include "machines/gcode_format.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"

@@ -23,6 +23,7 @@
 #include "serve/api.h"
 #include "serve/api_state.h"
 #include "serve/pages.h"
+#include "serve/queue_api.h"
 #include "serve/store.h"
 #include "serve/worker_pool.h"
 #include "slicer/file_io.h"
@@ -293,6 +294,9 @@ Response Api::State::route(const Request& r) {
   };
   if (get && r.path == "/") return page("design.html");
   if (get && r.path == "/gallery") return page("gallery.html");
+  if (r.path == "/draw" || r.path == "/api/plot") return route_plot(r);
+  if (is_queue_path(r.path)) return route_queue(r);
+  if (r.path == "/api/sweeps" || r.path.rfind("/api/sweeps/", 0) == 0) return route_sweeps(r);
   if (p.size() < 2 || p[0] != "api") throw HttpError(404, "no such page: " + r.path.substr(0, 200));
   const auto method_not_allowed = [&](const std::string& allowed) {
     return HttpError(405, r.method.substr(0, 20) + " " + r.path.substr(0, 200) + ": use " + allowed);

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -14,6 +15,8 @@ namespace strand::serve {
 
 // Largest request body accepted (a job file's JSON is a few hundred bytes).
 inline constexpr std::size_t kMaxBodyBytes = 1 << 20;
+// Largest multipart upload to POST /api/plot (the drawing or image and the form's fields).
+inline constexpr std::size_t kMaxUploadBytes = 16 << 20;
 // Longest saved-job name, in bytes.
 inline constexpr std::size_t kMaxNameBytes = 200;
 // Unsaved jobs (the design page's live previews) kept on disk; older ones are removed.
@@ -23,12 +26,21 @@ inline constexpr std::size_t kMaxWaitingJobs = 16;
 // Longest a request waits for its job before it gets 503 (the job still finishes).
 inline constexpr int kMaxJobWaitSeconds = 300;
 
+// One part of a multipart/form-data body: a form field (no filename) or an uploaded file.
+struct Upload {
+  std::string name;          // the field's name
+  std::string filename;      // as the client sent it: shown at most, never a path
+  std::string content_type;
+  std::string content;
+};
+
 struct Request {
   std::string method;  // "GET", "POST", ...
   std::string path;    // decoded, without the query: "/api/jobs/3"
   std::map<std::string, std::string> query;
   std::map<std::string, std::string> headers;  // names in lower case
-  std::string body;
+  std::string body;           // empty for multipart/form-data: see files
+  std::vector<Upload> files;  // multipart/form-data parts, by field name
 };
 
 struct Response {
@@ -36,6 +48,11 @@ struct Response {
   std::string content_type = "application/json";
   std::string body;
   std::vector<std::pair<std::string, std::string>> headers;
+  // A streamed answer (Server-Sent Events) instead of `body`: called again and again on the
+  // connection's thread, it appends the next piece to `out` ("" when nothing came within
+  // its wait of at most a second) and returns false when the stream ends. It is destroyed
+  // when the client goes away.
+  std::function<bool(std::string& out)> stream;
 };
 
 struct ApiOptions {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,8 @@ struct JobSpec;
 }
 
 namespace strand::serve {
+
+class Queue;
 
 // Thrown by handlers; Api::handle answers it as {"error": what()} with the status.
 class HttpError : public std::runtime_error {
@@ -52,8 +55,10 @@ struct Api::State {
   std::filesystem::path dir;
   Store store;
   WorkerPool pool;
+  std::unique_ptr<Queue> queue;  // the machine queue and its sender threads (queue.h)
 
   State(const ApiOptions& o, const std::filesystem::path& d);
+  ~State();  // stops the queue's senders first
 
   std::filesystem::path job_dir(std::int64_t id) const { return dir / "jobs" / std::to_string(id); }
 
@@ -64,6 +69,12 @@ struct Api::State {
   }
 
   Response route(const Request& r);
+  // GET /queue, /api/ports, /api/queue..., /api/events (queue_api.cpp).
+  Response route_queue(const Request& r);
+  // GET /draw and POST /api/plot (plot_api.cpp).
+  Response route_plot(const Request& r);
+  // POST /api/sweeps, GET /api/sweeps/{id}/files/... (sweep_api.cpp).
+  Response route_sweeps(const Request& r);
   Response run(const Request& r, bool save);
   nlohmann::json produce(std::int64_t id, const cli::JobSpec& spec, const std::string& ext);
   nlohmann::json summary_of(const JobRow& row, bool with_report);

@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "serve/api_state.h"
+#include "serve/queue.h"
 
 namespace strand::serve {
 
@@ -13,7 +14,10 @@ using nlohmann::json;
 Api::State::State(const ApiOptions& o, const fs::path& d)
     : options(o), dir(d), store((d / "strand.sqlite").string()),
       pool(o.workers > 0 ? o.workers : static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u)),
-           kMaxWaitingJobs) {}
+           kMaxWaitingJobs),
+      queue(std::make_unique<Queue>(d, o.run_jobs)) {}
+
+Api::State::~State() { queue.reset(); }
 
 std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
 

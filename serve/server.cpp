@@ -53,7 +53,8 @@ Server::Server(const ServeOptions& options) : impl_(std::make_unique<Impl>(check
   httplib::Server& h = impl_->http;
   const int threads = std::max(impl_->options.http_threads, 1);
   h.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
-  h.set_payload_max_length(kMaxBodyBytes);
+  // Uploads to POST /api/plot may be larger; Api::handle holds other bodies to kMaxBodyBytes.
+  h.set_payload_max_length(kMaxUploadBytes);
   h.set_read_timeout(10, 0);
   h.set_write_timeout(10, 0);
   h.set_keep_alive_max_count(20);
@@ -65,9 +66,21 @@ Server::Server(const ServeOptions& options) : impl_(std::make_unique<Impl>(check
     for (const auto& [k, v] : req.params) r.query.emplace(k, v);
     for (const auto& [k, v] : req.headers) r.headers.emplace(lower(k), v);
     r.body = req.body;
+    for (const auto& [name, part] : req.files) r.files.push_back({name, part.filename, part.content_type, part.content});
     const Response out = api->handle(r);
     res.status = out.status;
     for (const auto& [k, v] : out.headers) res.set_header(k, v);
+    if (out.stream) {  // Server-Sent Events: chunks as the stream yields them, until it ends
+      res.set_chunked_content_provider(out.content_type, [next = out.stream](std::size_t, httplib::DataSink& sink) {
+        std::string chunk;
+        if (!next(chunk)) {
+          sink.done();
+          return true;
+        }
+        return chunk.empty() || sink.write(chunk.data(), chunk.size());
+      });
+      return;
+    }
     res.set_content(out.body, out.content_type);
   };
   const char* any = ".*";
@@ -78,9 +91,10 @@ Server::Server(const ServeOptions& options) : impl_(std::make_unique<Impl>(check
   h.Patch(any, handler);
   h.Options(any, handler);
   // The library's own refusals (malformed request line, body or URI too large) as JSON.
-  h.set_error_handler([](const httplib::Request&, httplib::Response& res) {
+  h.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
-    const std::string why = res.status == 413   ? "request body larger than " + std::to_string(kMaxBodyBytes) + " bytes"
+    const std::size_t limit = req.path == "/api/plot" ? kMaxUploadBytes : kMaxBodyBytes;
+    const std::string why = res.status == 413   ? "request body larger than " + std::to_string(limit) + " bytes"
                             : res.status == 414 ? std::string("request URI too long")
                             : res.status == 404 ? std::string("not found")
                                                 : "malformed request (HTTP " + std::to_string(res.status) + ")";

@@ -13,8 +13,8 @@ set(allowed_postprocess/preview slicer machines postprocess/plan postprocess/ins
                                 postprocess/preview)
 set(allowed_jobs                slicer machines patterns postprocess/plan postprocess/inspect
                                 postprocess/plot postprocess/preview jobs)
-set(allowed_serve               slicer machines patterns postprocess/plan postprocess/inspect
-                                postprocess/plot postprocess/preview jobs serve)
+set(allowed_serve               slicer machines machines/send patterns postprocess/plan
+                                postprocess/inspect postprocess/plot postprocess/preview jobs serve)
 set(rooms slicer machines machines/send patterns postprocess/plan postprocess/inspect
           postprocess/plot postprocess/preview jobs serve)
 set(failures "")

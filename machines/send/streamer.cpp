@@ -58,6 +58,7 @@ void Streamer::acknowledge_front() {
 
 void Streamer::on_line(std::string_view line) {
   if (state_ == StreamState::Failed || state_ == StreamState::Done) return;
+  last_reply_.assign(line);
   const Reply r = parse_reply(line, firmware_);
   switch (r.kind) {
     case ReplyKind::Ok:

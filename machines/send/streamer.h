@@ -49,6 +49,8 @@ class Streamer {
   // one the firmware failed on). 0 when done.
   int resume_line() const;
   const std::string& failure() const { return failure_; }  // the firmware's message
+  // The last line received from the firmware, as received (for a monitor to show).
+  const std::string& last_reply() const { return last_reply_; }
 
  private:
   bool numbered_protocol() const { return firmware_ != Firmware::Grbl; }
@@ -60,6 +62,7 @@ class Streamer {
   std::vector<Command> commands_;
   StreamState state_ = StreamState::Running;
   std::string failure_;
+  std::string last_reply_;
   std::size_t acked_ = 0;    // commands_[0, acked_) confirmed
   std::size_t sent_ = 0;     // commands_[0, sent_) written (Marlin: at most acked_ + 1)
   bool reset_sent_ = false;  // Marlin/RRF: "M110 N0" written

@@ -1,5 +1,5 @@
-// Mesh pose planning: the path on the offset surfaces with its cone checks, then orientations
-// by the smallest tilt from the reference pose and a rotation about the nozzle axis per pass,
+// Mesh pose planning: the path's targets (mesh_path_targets.cpp) given orientations by the
+// smallest tilt from the reference pose and a rotation about the nozzle axis per pass,
 // tracked by inverse kinematics, passes restarted turned where the arm's range ends.
 #include "postprocess/plan/mesh_pose_planner.h"
 
@@ -14,25 +14,22 @@
 #include "machines/joint_analysis.h"
 #include "machines/robot_arm.h"
 #include "machines/workpiece_pose.h"
-#include "postprocess/plan/surface_sampling.h"
+#include "postprocess/plan/mesh_path_targets.h"
 #include "slicer/input_error.h"
 #include "slicer/params.h"
-#include "slicer/tolerances.h"
 #include "slicer/units.h"
 
 namespace strand::post {
 
 using machines::Joints;
-using slicer::Feature;
+using mesh_detail::PathBuilder;
+using mesh_detail::Target;
+using mesh_detail::where;
 using slicer::PosePoint;
-using slicer::Vec2;
 using slicer::Vec3;
 
 namespace {
 
-// Deposit segments are cut into pieces no longer than this before sampling, so the samples
-// follow the mesh from triangle to triangle, mm.
-constexpr double kMeshStepMm = 2.0;
 // Largest turn about the nozzle axis between two poses of a restart, deg.
 constexpr double kTurnStepDeg = 1.0;
 // Largest joint move between neighbouring poses, deg: more means a posture near a singular
@@ -43,172 +40,6 @@ constexpr std::size_t kLookahead = 300;
 // A solution counts when its flange is this close to the target (as joint_analysis), mm, rad.
 constexpr double kSolvedMm = 1e-3;
 constexpr double kSolvedRad = 1e-6;
-
-std::string mm(double v) { return machines::fmt_fixed(v, 3); }
-
-// One point of the path, before its orientation is known.
-struct Target {
-  Vec2 uv = Vec2::Zero();
-  double offset = 0.0;
-  bool extrude = false;
-  bool lifted = false;  // above its layer's offset (a travel backed off the substrate)
-  Feature feature = Feature::Infill;
-  double speed = 0.0;
-  int layer = 0;
-  slicer::SurfaceFrame frame;
-};
-
-std::string where(const Target& t) {
-  return "pattern point (u, v) = (" + mm(t.uv.x()) + ", " + mm(t.uv.y()) +
-         ") mm, nozzle tip at (x, y, z) = (" + mm(t.frame.point_mm.x()) + ", " +
-         mm(t.frame.point_mm.y()) + ", " + mm(t.frame.point_mm.z()) +
-         ") mm in the mesh's frame, layer " + std::to_string(t.layer);
-}
-
-// Segments cut into pieces of at most kMeshStepMm (lines and arcs stay exact).
-std::vector<slicer::Segment> pieces_of(const Vec2& from, const slicer::Segment& s) {
-  const double len = slicer::segment_length(from, s);
-  const int n = std::max(1, static_cast<int>(std::ceil(len / kMeshStepMm)));
-  if (n == 1) return {s};
-  std::vector<slicer::Segment> out;
-  if (s.kind == slicer::SegmentKind::Line) {
-    for (int i = 1; i <= n; ++i) {
-      slicer::Segment p = s;
-      p.end_mm = i == n ? s.end_mm : Vec2(from + (s.end_mm - from) * (double(i) / n));
-      out.push_back(p);
-    }
-    return out;
-  }
-  const double r = (from - s.center_mm).norm();
-  const double a0 = slicer::angle_of(s.center_mm, from);
-  const double sweep = slicer::arc_sweep(s.center_mm, from, s.end_mm, s.ccw);
-  for (int i = 1; i <= n; ++i) {
-    slicer::Segment p = s;
-    p.end_mm = i == n ? s.end_mm : slicer::on_circle(s.center_mm, r, a0 + sweep * i / n);
-    out.push_back(p);
-  }
-  return out;
-}
-
-// The path: deposits and travels on the offset surfaces, every point's cone checked.
-class PathBuilder {
- public:
-  PathBuilder(const slicer::MeshSubstrate& s, const machines::RobotCell& c,
-              const PosePlanOptions& o)
-      : s_(s), c_(c), o_(o) {}
-
-  std::vector<Target> run(const slicer::Toolpath& t) {
-    for (std::size_t k = 0; k < t.layers.size(); ++k) {
-      layer_ = static_cast<int>(k);
-      layer_offset_ = t.layers[k].z_mm;
-      for (const auto& stroke : t.layers[k].strokes) {
-        if (stroke.segments.empty()) continue;
-        travel_to(stroke.start_mm, layer_offset_);
-        Vec2 at = stroke.start_mm;
-        for (const auto& seg : stroke.segments) {
-          const double speed = speed_of(seg.feature);
-          for (const auto& piece : pieces_of(at, seg)) {
-            for (const Vec2& q :
-                 sample_on_surface(s_, at, piece, layer_offset_, o_.arc_tolerance_mm))
-              push(q, layer_offset_, true, seg.feature, speed);
-            at = piece.end_mm;
-          }
-        }
-      }
-    }
-    if (!out_.empty()) push(uv_, off_ + o_.lift_mm, false, feature_, o_.lift_speed_mm_per_s);
-    return std::move(out_);
-  }
-
-  // The target `t` raised by `by` mm along its normal (a restart backs off there).
-  Target lifted(const Target& t, double by) const {
-    Target l = t;
-    l.offset = t.offset + by;
-    l.lifted = true;
-    l.extrude = false;
-    l.speed = o_.lift_speed_mm_per_s;
-    l.frame = s_.frame_at(t.uv, l.offset);
-    check_cone(l);
-    return l;
-  }
-
- private:
-  double speed_of(Feature f) const {
-    const auto it = o_.deposit_speed_mm_per_s.find(f);
-    return it == o_.deposit_speed_mm_per_s.end() ? o_.default_deposit_speed_mm_per_s : it->second;
-  }
-
-  void travel_to(const Vec2& uv, double offset) {
-    if (out_.empty()) {
-      push(uv, offset + o_.lift_mm, false, feature_, 0.0);
-      push(uv, offset, false, feature_, o_.lift_speed_mm_per_s);
-      return;
-    }
-    if ((uv - uv_).norm() < slicer::kSamePointMm && std::abs(offset - off_) < slicer::kSamePointMm)
-      return;
-    const double safe = std::max(off_, offset) + o_.lift_mm;
-    if (off_ < safe) push(uv_, safe, false, feature_, o_.lift_speed_mm_per_s);
-    if ((uv - uv_).norm() >= slicer::kSamePointMm) {
-      Vec2 at = uv_;
-      for (const auto& piece : pieces_of(uv_, slicer::line_to(uv, feature_))) {
-        for (const Vec2& q : sample_on_surface(s_, at, piece, safe, o_.arc_tolerance_mm))
-          push(q, safe, false, feature_, o_.travel_speed_mm_per_s);
-        at = piece.end_mm;
-      }
-    }
-    push(uv, offset, false, feature_, o_.lift_speed_mm_per_s);
-  }
-
-  void check_cone(const Target& t) const {
-    if (auto hit = s_.cone_hit(c_.nozzle_cone, t.frame.point_mm, t.frame.normal)) {
-      const auto& cone = c_.nozzle_cone;
-      throw InputError("substrate.mesh = " + s_.source() +
-                       ": the nozzle would touch the mesh at (" + mm(hit->x()) + ", " +
-                       mm(hit->y()) + ", " + mm(hit->z()) + ") mm with its tip at " + where(t) +
-                       " (robot.nozzle_cone: " + slicer::short_number(cone.half_angle_deg) +
-                       " deg half-angle, " + slicer::short_number(cone.length_mm) +
-                       " mm long, tip radius " + slicer::short_number(cone.tip_radius_mm) +
-                       " mm); the surface rises into the nozzle there");
-    }
-  }
-
-  void push(const Vec2& uv, double offset, bool extrude, Feature f, double speed) {
-    if (!s_.in_domain(uv)) {
-      const slicer::UvBox b = s_.domain();
-      throw InputError("substrate.mesh = " + s_.source() + ": the pattern leaves the mesh at " +
-                       "pattern point (u, v) = (" + mm(uv.x()) + ", " + mm(uv.y()) +
-                       ") mm, layer " + std::to_string(layer_) + "; the mesh's (u, v) spans " +
-                       mm(b.min_mm.x()) + ".." + mm(b.max_mm.x()) + " x " + mm(b.min_mm.y()) +
-                       ".." + mm(b.max_mm.y()) + " mm: use a smaller pattern or a larger mesh");
-    }
-    if (out_.size() >= kMaxPosePoints) {
-      throw InputError("arc-tolerance = " + slicer::short_number(o_.arc_tolerance_mm) +
-                       ": the program would need more than " + std::to_string(kMaxPosePoints) +
-                       " poses; raise it (mm) or print fewer layers");
-    }
-    Target t;
-    t.uv = uv;
-    t.offset = offset;
-    t.extrude = extrude;
-    t.lifted = offset > layer_offset_ + 1e-9;
-    t.feature = f;
-    t.speed = speed;
-    t.layer = layer_;
-    t.frame = s_.frame_at(uv, offset);
-    check_cone(t);
-    out_.push_back(t);
-    uv_ = uv, off_ = offset, feature_ = f;
-  }
-
-  const slicer::MeshSubstrate& s_;
-  const machines::RobotCell& c_;
-  const PosePlanOptions& o_;
-  std::vector<Target> out_;
-  Vec2 uv_ = Vec2::Zero();
-  double off_ = 0.0, layer_offset_ = 0.0;
-  Feature feature_ = Feature::Infill;
-  int layer_ = 0;
-};
 
 // The smallest rotation taking the workpiece normal `n` (workpiece frame) from where `r`
 // puts it onto `up`, applied after r.

@@ -1,5 +1,6 @@
 // Fuzz target: any bytes as an HTTP request to the workbench's handlers (serve::Api), read as
-// "METHOD TARGET\nName: value\n...\n\nBODY". Every request must get an answer with a status
+// "METHOD TARGET\nName: value\n...\n\nBODY"; a head line "@field=text" is an uploaded part (a
+// multipart form's field or file, as cpp-httplib hands them over). Every request must get an answer with a status
 // and, for errors, one line of JSON; nothing may throw. Generation is checked but not run
 // (ApiOptions::run_jobs = false): the bound on work per input.
 #include <stdlib.h>
@@ -56,6 +57,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         r.query[query.substr(0, eq)] = eq == std::string::npos ? "" : query.substr(eq + 1);
       }
       first = false;
+    } else if (!line.empty() && line[0] == '@') {
+      const auto eq = line.find('=');
+      Upload u;
+      u.name = line.substr(1, eq == std::string::npos ? std::string::npos : eq - 1);
+      u.filename = u.name + ".svg";
+      u.content = eq == std::string::npos ? "" : line.substr(eq + 1);
+      for (char& c : u.content) c = c == '\x01' ? '\n' : c;  // newlines inside a part
+      r.files.push_back(u);
     } else {
       const auto colon = line.find(": ");
       if (colon != std::string::npos) r.headers[line.substr(0, colon)] = line.substr(colon + 2);

@@ -3,11 +3,7 @@
 // bodies, token, same-origin, Host) and the pages in headless Chromium.
 #include "serve/server.h"
 
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <sys/time.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -23,6 +19,7 @@
 #include "serve/api.h"
 #include "tests/support/chromium.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/http_client.h"
 
 namespace strand::serve {
 namespace {
@@ -32,52 +29,12 @@ using strand::testing::fresh_dir;
 using strand::testing::run_strand;
 using strand::testing::slurp;
 
-struct Reply {
-  int status = 0;
-  std::string head, body;
-  json j() const { return json::parse(body, nullptr, false); }
-};
+using Reply = strand::testing::HttpReply;
 
-// One request on a fresh connection (Connection: close), read to the end; 30 s at most.
+// One request on a fresh connection, a JSON body (tests/support/http_client.h).
 Reply http(int port, const std::string& method, const std::string& target, const std::string& body = "",
            const std::string& extra_headers = "") {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  timeval tv{30, 0};
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-  ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<uint16_t>(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  Reply r;
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-    ::close(fd);
-    return r;
-  }
-  const std::string host = extra_headers.rfind("Host:", 0) == 0 ? "" : "Host: 127.0.0.1:" + std::to_string(port) + "\r\n";
-  const std::string req = method + " " + target + " HTTP/1.1\r\n" + host +
-                          "Connection: close\r\nContent-Type: application/json\r\nContent-Length: " +
-                          std::to_string(body.size()) + "\r\n" + extra_headers + "\r\n" + body;
-  std::size_t sent = 0;
-  while (sent < req.size()) {
-    const ssize_t n = ::send(fd, req.data() + sent, req.size() - sent, MSG_NOSIGNAL);
-    if (n <= 0) break;  // the server may answer (413) before reading it all
-    sent += static_cast<std::size_t>(n);
-  }
-  std::string all;
-  char buf[65536];
-  for (int i = 0; i < 100000; ++i) {
-    const ssize_t n = ::recv(fd, buf, sizeof buf, 0);
-    if (n <= 0) break;
-    all.append(buf, static_cast<std::size_t>(n));
-  }
-  ::close(fd);
-  const auto end = all.find("\r\n\r\n");
-  if (end == std::string::npos) return r;
-  r.head = all.substr(0, end);
-  r.body = all.substr(end + 4);
-  if (r.head.size() > 12) r.status = std::stoi(r.head.substr(9, 3));
-  return r;
+  return strand::testing::http_request(port, method, target, body, "application/json", extra_headers);
 }
 
 const std::string kJob =

@@ -1,0 +1,193 @@
+// SQLite access for the machine queue: prepared statements, one connection behind a mutex,
+// WAL with synchronous=NORMAL (a commit survives the process being killed; progress is
+// written on every acknowledged line).
+#include "serve/queue_store.h"
+
+#include <sqlite3.h>
+
+#include <stdexcept>
+
+#include "slicer/input_error.h"
+
+namespace strand::serve {
+
+namespace {
+
+struct Statement {
+  sqlite3_stmt* s = nullptr;
+  Statement(sqlite3* db, const char* sql) {
+    if (sqlite3_prepare_v2(db, sql, -1, &s, nullptr) != SQLITE_OK) {
+      throw std::runtime_error(std::string("sqlite: ") + sqlite3_errmsg(db));
+    }
+  }
+  ~Statement() { sqlite3_finalize(s); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+  void bind(int i, const std::string& v) { sqlite3_bind_text(s, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
+  void bind(int i, std::int64_t v) { sqlite3_bind_int64(s, i, v); }
+  bool step() {
+    const int rc = sqlite3_step(s);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw std::runtime_error(std::string("sqlite: ") + sqlite3_errmsg(sqlite3_db_handle(s)));
+  }
+  std::string text(int col) {
+    const auto* p = sqlite3_column_text(s, col);
+    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(s, col))) : "";
+  }
+  std::int64_t integer(int col) { return sqlite3_column_int64(s, col); }
+};
+
+const char* const kSchema =
+    "PRAGMA journal_mode=WAL;"
+    "PRAGMA synchronous=NORMAL;"
+    "CREATE TABLE IF NOT EXISTS queue ("
+    " id INTEGER PRIMARY KEY AUTOINCREMENT,"
+    " created TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%SZ','now')),"
+    " job INTEGER NOT NULL, job_name TEXT NOT NULL, file TEXT NOT NULL, machine TEXT NOT NULL,"
+    " port TEXT NOT NULL, baud INTEGER NOT NULL, firmware TEXT NOT NULL,"
+    " state TEXT NOT NULL, line INTEGER NOT NULL DEFAULT 0, resume_line INTEGER NOT NULL DEFAULT 0,"
+    " acked INTEGER NOT NULL DEFAULT 0, total INTEGER NOT NULL DEFAULT 0, message TEXT NOT NULL DEFAULT '');"
+    "CREATE TABLE IF NOT EXISTS queue_machines ("
+    " name TEXT PRIMARY KEY, port TEXT NOT NULL, baud INTEGER NOT NULL, firmware TEXT NOT NULL);"
+    // a job still streaming when the server stopped: resumable from its last acknowledged line
+    "UPDATE queue SET state = 'interrupted',"
+    " message = 'the server stopped while it ran; last acknowledged line ' || line"
+    " WHERE state = 'running';";
+
+const char* const kColumns =
+    "SELECT id, created, job, job_name, file, machine, port, baud, firmware, state, line, resume_line,"
+    " acked, total, message FROM queue ";
+
+QueueRow row_of(Statement& st) {
+  QueueRow r;
+  r.id = st.integer(0);
+  r.created = st.text(1);
+  r.job = st.integer(2);
+  r.job_name = st.text(3);
+  r.file = st.text(4);
+  r.machine = st.text(5);
+  r.port = st.text(6);
+  r.baud = static_cast<int>(st.integer(7));
+  r.firmware = st.text(8);
+  r.state = st.text(9);
+  r.line = static_cast<int>(st.integer(10));
+  r.resume_line = static_cast<int>(st.integer(11));
+  r.acked = st.integer(12);
+  r.total = st.integer(13);
+  r.message = st.text(14);
+  return r;
+}
+
+}  // namespace
+
+QueueStore::QueueStore(const std::string& path) {
+  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX,
+                      nullptr) != SQLITE_OK) {
+    const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw InputError("--data: cannot open " + path + " (" + why + ")");
+  }
+  sqlite3_busy_timeout(db_, 5000);
+  char* err = nullptr;
+  if (sqlite3_exec(db_, kSchema, nullptr, nullptr, &err) != SQLITE_OK) {
+    const std::string why = err ? err : "?";
+    sqlite3_free(err);
+    sqlite3_close(db_);
+    throw InputError("--data: cannot use " + path + " for the queue (" + why + ")");
+  }
+}
+
+QueueStore::~QueueStore() { sqlite3_close(db_); }
+
+std::int64_t QueueStore::insert(const QueueRow& r) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_,
+               "INSERT INTO queue (job, job_name, file, machine, port, baud, firmware, state)"
+               " VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  st.bind(1, r.job);
+  st.bind(2, r.job_name);
+  st.bind(3, r.file);
+  st.bind(4, r.machine);
+  st.bind(5, r.port);
+  st.bind(6, std::int64_t{r.baud});
+  st.bind(7, r.firmware);
+  st.bind(8, r.state);
+  st.step();
+  return sqlite3_last_insert_rowid(db_);
+}
+
+void QueueStore::update(const QueueRow& r) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_,
+               "UPDATE queue SET job_name = ?, file = ?, machine = ?, port = ?, baud = ?, firmware = ?,"
+               " state = ?, line = ?, resume_line = ?, acked = ?, total = ?, message = ? WHERE id = ?");
+  st.bind(1, r.job_name);
+  st.bind(2, r.file);
+  st.bind(3, r.machine);
+  st.bind(4, r.port);
+  st.bind(5, std::int64_t{r.baud});
+  st.bind(6, r.firmware);
+  st.bind(7, r.state);
+  st.bind(8, std::int64_t{r.line});
+  st.bind(9, std::int64_t{r.resume_line});
+  st.bind(10, r.acked);
+  st.bind(11, r.total);
+  st.bind(12, r.message);
+  st.bind(13, r.id);
+  st.step();
+}
+
+void QueueStore::progress(std::int64_t id, int line, int resume_line, std::int64_t acked) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, "UPDATE queue SET line = ?, resume_line = ?, acked = ? WHERE id = ?");
+  st.bind(1, std::int64_t{line});
+  st.bind(2, std::int64_t{resume_line});
+  st.bind(3, acked);
+  st.bind(4, id);
+  st.step();
+}
+
+std::vector<QueueRow> QueueStore::rows() {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, (std::string(kColumns) + "ORDER BY id").c_str());
+  std::vector<QueueRow> out;
+  while (st.step()) out.push_back(row_of(st));
+  return out;
+}
+
+void QueueStore::prune_finished(int keep) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_,
+               "DELETE FROM queue WHERE id IN (SELECT id FROM queue WHERE state IN ('done', 'cancelled')"
+               " ORDER BY id DESC LIMIT -1 OFFSET ?)");
+  st.bind(1, std::int64_t{keep});
+  st.step();
+}
+
+void QueueStore::save_machine(const MachinePort& m) {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, "INSERT OR REPLACE INTO queue_machines (name, port, baud, firmware) VALUES (?, ?, ?, ?)");
+  st.bind(1, m.name);
+  st.bind(2, m.port);
+  st.bind(3, std::int64_t{m.baud});
+  st.bind(4, m.firmware);
+  st.step();
+}
+
+std::vector<MachinePort> QueueStore::machines() {
+  const std::lock_guard<std::mutex> lock(mu_);
+  Statement st(db_, "SELECT name, port, baud, firmware FROM queue_machines ORDER BY name");
+  std::vector<MachinePort> out;
+  while (st.step()) out.push_back({st.text(0), st.text(1), st.text(3), static_cast<int>(st.integer(2))});
+  return out;
+}
+
+std::optional<MachinePort> QueueStore::machine(const std::string& name) {
+  for (const MachinePort& m : machines()) {
+    if (m.name == name) return m;
+  }
+  return std::nullopt;
+}
+
+}  // namespace strand::serve

@@ -1,0 +1,14 @@
+// The streaming screen of a 3MF package before lib3mf reads it: the archive's stated sizes,
+// then the XML depth, element counts and component graph of the parts lib3mf would read.
+#pragma once
+
+#include <string>
+
+namespace strand::slicer {
+
+// Throws InputError ("mesh = <path>: ...") for a package past any bound in mesh_3mf.h:
+// inflated size, XML nesting or elements, resources, triangles, component nesting, a
+// component loop, or placed objects; also for a package lib3mf would not read as XML.
+void screen_3mf_package(const std::string& bytes, const std::string& path);
+
+}  // namespace strand::slicer
