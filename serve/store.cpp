@@ -5,35 +5,24 @@
 
 #include <memory>
 
+#include "serve/sqlite_db.h"
 #include "slicer/input_error.h"
 
 namespace strand::serve {
 
 namespace {
 
-struct Statement {
-  sqlite3_stmt* s = nullptr;
-  Statement(sqlite3* db, const char* sql) {
-    if (sqlite3_prepare_v2(db, sql, -1, &s, nullptr) != SQLITE_OK) {
-      throw std::runtime_error(std::string("sqlite: ") + sqlite3_errmsg(db));
-    }
-  }
-  ~Statement() { sqlite3_finalize(s); }
-  Statement(const Statement&) = delete;
-  Statement& operator=(const Statement&) = delete;
-  void bind(int i, const std::string& v) { sqlite3_bind_text(s, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
-  void bind(int i, std::int64_t v) { sqlite3_bind_int64(s, i, v); }
-  bool step() {
-    const int rc = sqlite3_step(s);
-    if (rc == SQLITE_ROW) return true;
-    if (rc == SQLITE_DONE) return false;
-    throw std::runtime_error(std::string("sqlite: ") + sqlite3_errmsg(sqlite3_db_handle(s)));
-  }
-  std::string text(int col) {
-    const auto* p = sqlite3_column_text(s, col);
-    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(s, col))) : "";
-  }
-};
+using sqlite::Statement;
+
+const char* const kSchema =
+    "PRAGMA journal_mode=WAL;"
+    "CREATE TABLE IF NOT EXISTS jobs ("
+    " id INTEGER PRIMARY KEY AUTOINCREMENT,"
+    " created TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%SZ','now')),"
+    " name TEXT NOT NULL, saved INTEGER NOT NULL, status TEXT NOT NULL DEFAULT 'running',"
+    " job TEXT NOT NULL, result TEXT NOT NULL DEFAULT '');"
+    // a job still running when the server stopped never finished
+    "UPDATE jobs SET status = 'failed' WHERE status = 'running';";
 
 const char* const kColumns = "SELECT id, created, name, saved, status, job, result FROM jobs ";
 
@@ -51,31 +40,7 @@ JobRow row_of(Statement& st) {
 
 }  // namespace
 
-Store::Store(const std::string& path) {
-  if (sqlite3_open_v2(path.c_str(), &db_, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_NOMUTEX,
-                      nullptr) != SQLITE_OK) {
-    const std::string why = db_ ? sqlite3_errmsg(db_) : "out of memory";
-    sqlite3_close(db_);
-    throw InputError("--data: cannot open " + path + " (" + why + ")");
-  }
-  sqlite3_busy_timeout(db_, 5000);
-  char* err = nullptr;
-  const char* schema =
-      "PRAGMA journal_mode=WAL;"
-      "CREATE TABLE IF NOT EXISTS jobs ("
-      " id INTEGER PRIMARY KEY AUTOINCREMENT,"
-      " created TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%SZ','now')),"
-      " name TEXT NOT NULL, saved INTEGER NOT NULL, status TEXT NOT NULL DEFAULT 'running',"
-      " job TEXT NOT NULL, result TEXT NOT NULL DEFAULT '');"
-      // a job still running when the server stopped never finished
-      "UPDATE jobs SET status = 'failed' WHERE status = 'running';";
-  if (sqlite3_exec(db_, schema, nullptr, nullptr, &err) != SQLITE_OK) {
-    const std::string why = err ? err : "?";
-    sqlite3_free(err);
-    sqlite3_close(db_);
-    throw InputError("--data: cannot use " + path + " (" + why + ")");
-  }
-}
+Store::Store(const std::string& path) : db_(sqlite::open(path, kSchema, "")) {}
 
 Store::~Store() { sqlite3_close(db_); }
 
