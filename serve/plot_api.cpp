@@ -171,7 +171,7 @@ json plot_into(const fs::path& d, std::int64_t id, const PlotForm& f, const json
                             post::render_html(scene, "drawing.gcode"));
   const std::string base = "/api/jobs/" + std::to_string(id) + "/files/";
   json files = json::array();
-  for (const std::string name : {f.input, std::string("drawing.gcode"), std::string("preview.html"),
+  for (const std::string& name : {f.input, std::string("drawing.gcode"), std::string("preview.html"),
                                  std::string("preview.png"), std::string("report.json")}) {
     files.push_back({{"name", name}, {"url", base + name}, {"bytes", fs::file_size(d / name)}});
   }
