@@ -63,8 +63,8 @@ std::vector<int> nearest_to(const std::vector<Vec2>& ends, const Vec2& at, int k
 class Improver {
  public:
   // near_start: endpoints nearest the start point, nearest first.
-  Improver(CyclicTour& t, const NearLists& near, std::vector<int> near_start, const OrderOptions& o)
-      : t_(t), near_(near), near_start_(std::move(near_start)), o_(o) {}
+  Improver(CyclicTour& t, const NearLists& near, std::vector<int> near_start)
+      : t_(t), near_(near), near_start_(std::move(near_start)) {}
 
   // Improves until no move within `span` positions helps or the budget is spent.
   void run(long& budget, int span) {
@@ -246,7 +246,6 @@ class Improver {
   CyclicTour& t_;
   const NearLists& near_;
   std::vector<int> near_start_;
-  const OrderOptions& o_;
   std::vector<int> touched_;
   int span_ = 0;
 };
@@ -298,7 +297,7 @@ Improved improve(const std::vector<Vec2>& ends, const std::vector<int>& order,
   CyclicTour tour(std::move(tour_ends), start_metric, tour_reversed);
   const NearLists near = near_by_stroke.relabelled(label);
   long budget = static_cast<long>(o.evaluations_per_stroke * n);
-  Improver improver(tour, near, nearest_to(tour.ends(), start_metric, o.neighbours), o);
+  Improver improver(tour, near, nearest_to(tour.ends(), start_metric, o.neighbours));
   improver.run(budget, o.max_move_span);
   Improved out;
   out.order.reserve(static_cast<std::size_t>(n));
