@@ -18,9 +18,6 @@ namespace {
 using slicer::Affine;
 using slicer::Vec2;
 
-// Bounds of the drawing are taken from a flattening this fine (true size), mm.
-constexpr double kBoundsToleranceMm = 1e-3;
-
 struct Rule {
   std::string key;
   int pen = 1;
