@@ -57,7 +57,8 @@ json ports_json(Queue& queue) {
   };
   add_matching("/dev/serial/by-id", {""});
   add_matching("/dev", {"ttyUSB", "ttyACM", "ttyAMA", "rfcomm"});
-  for (const json& m : queue.list().at("machines")) paths.insert(m.at("port").get<std::string>());
+  const json listed = queue.list();  // kept: the loop reads into it
+  for (const json& m : listed.at("machines")) paths.insert(m.at("port").get<std::string>());
   json list = json::array();
   for (const std::string& p : paths) {
     struct stat st {};

@@ -203,7 +203,8 @@ TEST_F(DrawTest, ClientFileNamesNeverBecomePaths) {
                                   std::string("..\\..\\x.svg"), std::string("a/../../b.svg")}) {
     const Reply r = post_plot(port_, {{"file", kSvg, name}, {"name", "t"}});
     ASSERT_EQ(r.status, 201) << name << ": " << r.body;
-    for (const auto& f : r.j().at("files")) {
+    const json answer = r.j();  // kept: the loop reads into it
+    for (const auto& f : answer.at("files")) {
       const std::string n = f.at("name");
       EXPECT_EQ(n.find('/'), std::string::npos) << n;
       EXPECT_EQ(n.find(".."), std::string::npos) << n;
