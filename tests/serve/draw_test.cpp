@@ -16,6 +16,7 @@
 #include "tests/support/chromium.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/http_client.h"
+#include "tests/support/serve_fixture.h"
 
 namespace strand::serve {
 namespace {
@@ -65,26 +66,12 @@ std::string grey_image() {
   return "P5\n64 48\n255\n" + pixels;
 }
 
-class DrawTest : public ::testing::Test {
+class DrawTest : public strand::testing::ServeFixture {
  protected:
-  void SetUp() override {
-    dir_ = fresh_dir("draw");
-    ServeOptions o;
-    o.port = 0;
-    o.data_dir = dir_ + "/data";
-    server_ = std::make_unique<Server>(o);
-    port_ = server_->start();
-    ASSERT_GT(port_, 0);
-  }
-  void TearDown() override {
-    if (server_) server_->stop();
-  }
+  void SetUp() override { start_server("draw"); }
   std::string url(const std::string& path = "/") const {
     return "http://127.0.0.1:" + std::to_string(port_) + path;
   }
-  std::string dir_;
-  std::unique_ptr<Server> server_;
-  int port_ = 0;
 };
 
 TEST_F(DrawTest, PlottedSvgIsByteIdenticalToStrandPlot) {

@@ -15,6 +15,7 @@
 #include "tests/support/chromium.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/http_client.h"
+#include "tests/support/serve_fixture.h"
 
 namespace strand::serve {
 namespace {
@@ -29,26 +30,12 @@ const std::string kSweep = R"({"job": {"generator": "scaffold", "machine": "delt
   "params": {"nozzle": 0.84, "size": "20x20", "layers": 2}, "output": "../../escaped.gcode"},
   "vary": {"gap": [1.2, 1.6]}})";
 
-class SweepApiTest : public ::testing::Test {
+class SweepApiTest : public strand::testing::ServeFixture {
  protected:
-  void SetUp() override {
-    dir_ = fresh_dir("sweep-api");
-    ServeOptions o;
-    o.port = 0;
-    o.data_dir = dir_ + "/data";
-    server_ = std::make_unique<Server>(o);
-    port_ = server_->start();
-    ASSERT_GT(port_, 0);
-  }
-  void TearDown() override {
-    if (server_) server_->stop();
-  }
+  void SetUp() override { start_server("sweep-api"); }
   strand::testing::HttpReply post(const json& body) {
     return http_request(port_, "POST", "/api/sweeps", body.dump());
   }
-  std::string dir_;
-  std::unique_ptr<Server> server_;
-  int port_ = 0;
 };
 
 TEST_F(SweepApiTest, SweepIsOneGalleryGroupWithItsContactSheet) {
