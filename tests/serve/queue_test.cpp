@@ -27,6 +27,7 @@
 #include "serve/server.h"
 #include "tests/support/chromium.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/http_client.h"
 #include "tests/support/firmware_sim.h"
 
 namespace strand::serve {
@@ -36,21 +37,7 @@ using nlohmann::json;
 using strand::testing::fresh_dir;
 using strand::testing::slurp;
 
-int connect_to(int port, int timeout_s) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  timeval tv{timeout_s, 0};
-  ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-  ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(static_cast<uint16_t>(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-    ::close(fd);
-    return -1;
-  }
-  return fd;
-}
+using strand::testing::connect_to;
 
 void send_request(int fd, int port, const std::string& method, const std::string& target, const std::string& body,
                   const std::string& extra) {

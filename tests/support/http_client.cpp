@@ -14,22 +14,28 @@
 
 namespace strand::testing {
 
-HttpReply http_request(int port, const std::string& method, const std::string& target,
-                       const std::string& body, const std::string& content_type,
-                       const std::string& headers) {
+int connect_to(int port, int timeout_s) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  timeval tv{30, 0};
+  timeval tv{timeout_s, 0};
   ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
   ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_port = htons(static_cast<uint16_t>(port));
   a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  HttpReply r;
   if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
     ::close(fd);
-    return r;
+    return -1;
   }
+  return fd;
+}
+
+HttpReply http_request(int port, const std::string& method, const std::string& target,
+                       const std::string& body, const std::string& content_type,
+                       const std::string& headers) {
+  const int fd = connect_to(port, 30);
+  HttpReply r;
+  if (fd < 0) return r;
   // `headers` starting with its own Host line replaces the default one (Host checks).
   const std::string host = headers.rfind("Host:", 0) == 0 ? "" : "Host: 127.0.0.1:" + std::to_string(port) + "\r\n";
   const std::string req =

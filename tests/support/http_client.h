@@ -14,6 +14,9 @@ struct HttpReply {
   nlohmann::json j() const { return nlohmann::json::parse(body, nullptr, false); }
 };
 
+// A socket connected to 127.0.0.1:port with `timeout_s` on reads and writes, or -1.
+int connect_to(int port, int timeout_s);
+
 // `headers` are extra lines ("Name: value\r\n" each; a first "Host:" line replaces the default
 // 127.0.0.1:port); 30 s at most per read or write.
 HttpReply http_request(int port, const std::string& method, const std::string& target,
