@@ -36,7 +36,7 @@ struct GenerateArgs {
 // every step succeeded.
 int run_and_print(const patterns::GeneratorSpec& spec, const nlohmann::json& given,
                   JobSettings s) {
-  const auto progress = command_progress(spec.name, s.substrate.empty() ? 5 : 3);
+  const auto progress = command_progress(spec.name, s.substrate.empty() ? 4 : 3);
   s.progress = progress.get();
   const std::string summary = run_job(spec, given, s).summary;
   if (progress) progress->finish();

@@ -109,7 +109,7 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
 namespace {
 
 struct Prepared {
-  slicer::Toolpath toolpath;
+  std::unique_ptr<slicer::LayerSource> layers;
   machines::MachineProfile machine;
   post::PlanOptions options;
 };
@@ -140,9 +140,25 @@ Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json&
   }
   const nlohmann::json values = slicer::resolve_params(generator.table(), params);
   slicer::progress_phase(s.progress, "generating");
-  p.toolpath = generator.generate(values);
-  p.options = post::plan_options_from(p.toolpath, s.arc_tolerance_mm);
+  p.layers = generator.layers(values);
+  p.options = post::plan_options_from(p.layers->record, s.arc_tolerance_mm);
   return p;
+}
+
+// The layers are planned and written one at a time (memory independent of the job's size);
+// the whole program is kept only where a check needs it (chords coarser than the default).
+post::Produced produce_prepared(Prepared& p, const patterns::GeneratorSpec& generator,
+                                const JobSettings& s, const post::GcodeStreams& streams) {
+  post::ProduceOptions po;
+  po.gcode_path = job_output_path(generator, s);
+  po.viewer_e = s.viewer_e;
+  po.streams = streams;
+  po.progress = s.progress;
+  po.keep_program = s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm;
+  post::Produced produced = post::produce_layers(*p.layers, p.machine, p.options, po);
+  slicer::progress_phase(s.progress, "checking");
+  vet_produced(produced, p.machine, s.arc_tolerance_mm);
+  return produced;
 }
 
 }  // namespace
@@ -150,12 +166,7 @@ Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json&
 post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                            const JobSettings& s) {
   Prepared p = prepare(generator, params, s);
-  post::Produced produced = post::produce(std::move(p.toolpath), p.machine, p.options,
-                                          job_output_path(generator, s), s.viewer_e, {},
-                                          s.progress);
-  slicer::progress_phase(s.progress, "checking");
-  vet_produced(produced, p.machine, s.arc_tolerance_mm);
-  return produced;
+  return produce_prepared(p, generator, s, {});
 }
 
 std::string viewer_output_path(const std::string& out) {
@@ -182,14 +193,15 @@ post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann:
   out.stage(path, produced.gcode);
   if (s.viewer_e) out.stage(viewer_output_path(path), produced.viewer_gcode);
 #else
-  // The G-code streams into its temp file as it is formatted: a large job never holds it.
+  // Layer by layer: the G-code body streams into its temp file as it is formatted and the
+  // head (which holds the totals) goes before it at commit, so a large job never holds its
+  // toolpath, program or text.
   Prepared p = prepare(generator, params, s);
   std::ostream& gcode = out.stage_stream(path);
   std::ostream* viewer = s.viewer_e ? &out.stage_stream(viewer_output_path(path)) : nullptr;
-  post::Produced produced = post::produce(std::move(p.toolpath), p.machine, p.options, path,
-                                          s.viewer_e, {&gcode, viewer}, s.progress);
-  slicer::progress_phase(s.progress, "checking");
-  vet_produced(produced, p.machine, s.arc_tolerance_mm);  // the text is streamed: chords only
+  post::Produced produced = produce_prepared(p, generator, s, {&gcode, viewer});  // chords only
+  out.prepend(path, produced.gcode_head);
+  if (s.viewer_e) out.prepend(viewer_output_path(path), produced.viewer_gcode_head);
 #endif
   if (!s.report.empty()) out.stage(s.report, slicer::dump_json(produced.report) + "\n");
   slicer::progress_phase(s.progress, "writing files");

@@ -64,19 +64,36 @@ class Writer {
   }
 
   void run(const slicer::MotionProgram& p) {
+    head();
+    add(p);
+    finish();
+  }
+
+  // The file's first lines: the preview warning and the header comments.
+  void head() {
     if (o_.viewer_e) {
       out_ += comment("PREVIEW ONLY - NOT FOR PRINTING: E words are computed ink volume (mm3, relative) for viewers");
     }
     for (const auto& h : o_.header) out_ += h.empty() ? comment("") : comment(h);
-    for (const auto& line : m_.start_gcode) out_ += expand(line, m_) + "\n";
-    preamble();
-    at_ = p.start_mm;
-    std::size_t written = 0;
+  }
+
+  // The next piece of the program; the first also writes the start G-code and preamble.
+  void add(const slicer::MotionProgram& p) {
+    if (!begun_) {
+      begun_ = true;
+      for (const auto& line : m_.start_gcode) out_ += expand(line, m_) + "\n";
+      preamble();
+      at_ = p.start_mm;
+    }
     for (const auto& mv : p.moves) {
       write(mv, p);
       if (sink_ && out_.size() >= kFlushBytes) flush();
-      if ((++written & 0xfffu) == 0) slicer::progress_step(o_.progress, written);
+      if ((++written_ & 0xfffu) == 0) slicer::progress_step(o_.progress, written_);
     }
+  }
+
+  void finish() {
+    if (!begun_) add(slicer::MotionProgram{});
     close_flow();
     out_ += ";TYPE:Custom\n";
     if (o_.viewer_e) out_ += comment("PREVIEW ONLY - NOT FOR PRINTING");
@@ -393,6 +410,8 @@ class Writer {
   double last_value_[3] = {0.0, 0.0, 0.0};  // the value last_ was formatted from
   std::string feed_;
   slicer::Vec3 at_ = slicer::Vec3::Zero();
+  bool begun_ = false;
+  std::size_t written_ = 0;
 };
 
 }  // namespace
@@ -430,5 +449,27 @@ void emit_gcode(const slicer::MotionProgram& program, const MachineProfile& mach
   buffer.reserve(kFlushBytes + 4096);
   Writer(machine, options, buffer, &out).run(program);
 }
+
+std::string gcode_head(const MachineProfile& machine, const EmitOptions& options) {
+  std::string out;
+  Writer(machine, options, out, nullptr).head();
+  return out;
+}
+
+struct GcodeBodyWriter::Impl {
+  Impl(const MachineProfile& m, const EmitOptions& o, std::ostream& out) : options(o), writer(m, options, buffer, &out) {
+    options.header.clear();
+    buffer.reserve(kFlushBytes + 4096);
+  }
+  EmitOptions options;
+  std::string buffer;
+  Writer writer;
+};
+
+GcodeBodyWriter::GcodeBodyWriter(const MachineProfile& machine, const EmitOptions& options, std::ostream& out)
+    : impl_(std::make_unique<Impl>(machine, options, out)) {}
+GcodeBodyWriter::~GcodeBodyWriter() = default;
+void GcodeBodyWriter::add(const slicer::MotionProgram& piece) { impl_->writer.add(piece); }
+void GcodeBodyWriter::finish() { impl_->writer.finish(); }
 
 }  // namespace strand::machines

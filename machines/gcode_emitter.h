@@ -3,6 +3,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,28 @@ std::string emit_gcode(const slicer::MotionProgram& program, const MachineProfil
 // memory (large jobs stream into the temporary output file).
 void emit_gcode(const slicer::MotionProgram& program, const MachineProfile& machine,
                 const EmitOptions& options, std::ostream& out);
+
+// A file in two parts, for a program that is never whole (one layer at a time, planned by
+// postprocess/plan's LayerPlanner): the head is options.header's comments (with the preview
+// warning for viewer_e), known only once every layer has passed; the body is everything
+// after it, written as the pieces come. gcode_head + body = emit_gcode of the whole program.
+std::string gcode_head(const MachineProfile& machine, const EmitOptions& options);
+
+class GcodeBodyWriter {
+ public:
+  // `options.header` is ignored (gcode_head writes it); `out` gets the text in blocks.
+  GcodeBodyWriter(const MachineProfile& machine, const EmitOptions& options, std::ostream& out);
+  ~GcodeBodyWriter();
+  // The next piece (its moves index the layers it lists); the first also writes the start
+  // G-code and preamble and takes its start_mm.
+  void add(const slicer::MotionProgram& piece);
+  // The end G-code; flushes.
+  void finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // PrusaSlicer's viewer knows only its own role names in ;TYPE:; this maps ours onto them.
 std::string viewer_role(slicer::Feature f);

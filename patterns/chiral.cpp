@@ -96,26 +96,29 @@ double chiral_min_cell_mm(ChiralKind kind, const ChiralParams& p) {
 
 namespace {
 
-slicer::Toolpath stacked(ChiralKind kind, const ChiralParams& p,
-                         const std::vector<slicer::Stroke>& strokes) {
-  slicer::Toolpath t;
-  t.generator = kind == ChiralKind::Tetra ? "tetrachiral" : "hexachiral";
-  for (int k = 0; k < p.layers; ++k) {
-    t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, strokes});
-  }
+std::unique_ptr<slicer::LayerSource> stacked(ChiralKind kind, const ChiralParams& p,
+                                             const std::vector<slicer::Stroke>& strokes) {
+  auto t = std::make_unique<slicer::RepeatedLayers>(std::vector<std::vector<slicer::Stroke>>{strokes},
+                                                    static_cast<std::size_t>(std::max(p.layers, 0)),
+                                                    p.layer_height_mm);
+  t->record.generator = kind == ChiralKind::Tetra ? "tetrachiral" : "hexachiral";
   return t;
 }
 
 }  // namespace
 
-slicer::Toolpath generate_chiral(ChiralKind kind, const ChiralParams& p) {
+std::unique_ptr<slicer::LayerSource> chiral_layers(ChiralKind kind, const ChiralParams& p) {
   const NodeRings rings = rings_of(p);
   const ChiralLattice lattice = lattice_maker(kind)(p.cols, p.rows, p.cell_mm);
   const std::vector<slicer::Stroke> strokes =
       chiral_layer(lattice, rings, {p.nozzle_mm, p.layer_height_mm, p.grip_mm});
-  slicer::Toolpath t = stacked(kind, p, strokes);
-  t.derived = derived(kind, p, rings, strokes);
+  auto t = stacked(kind, p, strokes);
+  t->record.derived = derived(kind, p, rings, strokes);
   return t;
+}
+
+slicer::Toolpath generate_chiral(ChiralKind kind, const ChiralParams& p) {
+  return slicer::collect(*chiral_layers(kind, p));
 }
 
 WrapRule chiral_wrap_rule(ChiralKind kind, const ChiralParams& p) {
@@ -140,7 +143,7 @@ slicer::Toolpath generate_chiral_ring(ChiralKind kind, ChiralParams p, const Wra
   const ChiralLattice lattice = ring(fit.cells, p.rows, p.cell_mm);
   const std::vector<slicer::Stroke> strokes =
       chiral_layer(lattice, rings, {p.nozzle_mm, p.layer_height_mm, p.grip_mm});
-  slicer::Toolpath t = stacked(kind, p, strokes);
+  slicer::Toolpath t = slicer::collect(*stacked(kind, p, strokes));
   t.derived = derived(kind, p, rings, strokes, fit.period_mm);
   t.derived["cell_mm"] = p.cell_mm;
   add_wrap_report(t.derived, fit, "node spacing (cell, both directions, cols ignored)");

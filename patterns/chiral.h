@@ -2,10 +2,12 @@
 // parameters and generator shared by `strand tetrachiral` and `strand hexachiral`.
 #pragma once
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "patterns/wrap_fit.h"
+#include "slicer/layer_source.h"
 #include "slicer/params.h"
 #include "slicer/toolpath.h"
 
@@ -37,6 +39,7 @@ ChiralParams chiral_params_from(ChiralKind kind, const std::string& name,
 // one nozzle diameter.
 double chiral_min_cell_mm(ChiralKind kind, const ChiralParams& p);
 // Layers centred on (0, 0), layer k at z = (k + 1) h; derived sizes and porosity.
+std::unique_ptr<slicer::LayerSource> chiral_layers(ChiralKind kind, const ChiralParams& p);
 slicer::Toolpath generate_chiral(ChiralKind kind, const ChiralParams& p);
 
 // `--wrap full`: what a ring of this lattice allows round a circumference (the smallest

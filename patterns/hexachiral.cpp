@@ -3,9 +3,11 @@
 
 namespace strand::patterns {
 
-slicer::Toolpath generate_hexachiral(const ChiralParams& p) {
-  return generate_chiral(ChiralKind::Hexa, p);
+std::unique_ptr<slicer::LayerSource> hexachiral_layers(const ChiralParams& p) {
+  return chiral_layers(ChiralKind::Hexa, p);
 }
+
+slicer::Toolpath generate_hexachiral(const ChiralParams& p) { return generate_chiral(ChiralKind::Hexa, p); }
 
 slicer::Toolpath generate_hexachiral_wrapped(const ChiralParams& p, double period_mm) {
   const WrapFit fit = fit_around("hexachiral", period_mm, p.cell_mm,

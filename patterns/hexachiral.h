@@ -9,6 +9,7 @@
 
 namespace strand::patterns {
 
+std::unique_ptr<slicer::LayerSource> hexachiral_layers(const ChiralParams& p);
 slicer::Toolpath generate_hexachiral(const ChiralParams& p);
 // `--wrap full`: a sleeve periodic in x with period `period_mm`, at least 3 cells round it
 // (cell adjusted to fit). Its end rows have even degree, so no frame; a grip band hangs on

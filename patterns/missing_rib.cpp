@@ -174,16 +174,19 @@ nlohmann::json missing_rib_report(const MissingRibParams& p, const MissingRibGeo
 }
 
 // The network's strands, the same in every layer, and the report.
-slicer::Toolpath stacked(const MissingRibParams& p, const MissingRibGeometry& g, const RibNetwork& net) {
+std::unique_ptr<slicer::LayerSource> stacked(const MissingRibParams& p, const MissingRibGeometry& g,
+                                             const RibNetwork& net) {
   std::vector<slicer::Stroke> strands = non_crossing_circuits(net, p.node_gap_mm);
   for (auto& s : strands) {
     s.width_mm = p.nozzle_mm;
     s.height_mm = p.layer_height_mm;
   }
-  slicer::Toolpath t;
-  t.generator = "missing-rib";
-  for (int k = 0; k < p.layers; ++k) t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, strands});
-  t.derived = missing_rib_report(p, g, net, strands);
+  nlohmann::json report = missing_rib_report(p, g, net, strands);
+  auto t = std::make_unique<slicer::RepeatedLayers>(std::vector<std::vector<slicer::Stroke>>{std::move(strands)},
+                                                    static_cast<std::size_t>(std::max(p.layers, 0)),
+                                                    p.layer_height_mm);
+  t->record.generator = "missing-rib";
+  t->record.derived = std::move(report);
   return t;
 }
 
@@ -253,10 +256,12 @@ class RingBuilder {
 
 }  // namespace
 
-slicer::Toolpath generate_missing_rib(const MissingRibParams& p) {
+std::unique_ptr<slicer::LayerSource> missing_rib_layers(const MissingRibParams& p) {
   const MissingRibGeometry g = missing_rib_geometry(p);
   return stacked(p, g, Builder(p, g).build());
 }
+
+slicer::Toolpath generate_missing_rib(const MissingRibParams& p) { return slicer::collect(*missing_rib_layers(p)); }
 
 slicer::Toolpath generate_missing_rib_wrapped(const MissingRibParams& given, double period_mm) {
   MissingRibParams p = given;
@@ -269,7 +274,7 @@ slicer::Toolpath generate_missing_rib_wrapped(const MissingRibParams& given, dou
   p.cols = fit.cells;
   MissingRibGeometry g = missing_rib_geometry(p);
   g.frame_width_mm = g.width_mm = period_mm;
-  slicer::Toolpath t = stacked(p, g, RingBuilder(p, g, fit.cells).build());
+  slicer::Toolpath t = slicer::collect(*stacked(p, g, RingBuilder(p, g, fit.cells).build()));
   t.derived["nodes"] = (p.rows + 1) * fit.cells;
   add_wrap_report(t.derived, fit, "node pitch (the rib adjusted at the same angle)");
   return t;

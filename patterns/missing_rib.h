@@ -6,8 +6,10 @@
 // through a node each cut its corner, by default one nozzle apart, so they touch side by side.
 #pragma once
 
+#include <memory>
 #include <nlohmann/json.hpp>
 
+#include "slicer/layer_source.h"
 #include "slicer/params.h"
 #include "slicer/toolpath.h"
 
@@ -44,6 +46,7 @@ struct MissingRibGeometry {
 
 MissingRibGeometry missing_rib_geometry(const MissingRibParams& p);
 // Layers centred on (0, 0); layer k at z = (k + 1) * layer height, one closed strand each.
+std::unique_ptr<slicer::LayerSource> missing_rib_layers(const MissingRibParams& p);
 slicer::Toolpath generate_missing_rib(const MissingRibParams& p);
 
 // `--wrap full` round a circumference `period_mm` (x, periodic): an even number of nodes

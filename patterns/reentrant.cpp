@@ -150,13 +150,11 @@ nlohmann::json reentrant_report(const ReentrantParams& p, const ReentrantGeometr
 }
 
 // Layers alternate direction, so each starts where the previous one ended.
-slicer::Toolpath stacked(const ReentrantParams& p, const slicer::Stroke& forward) {
-  const slicer::Stroke backward = slicer::reversed(forward);
-  slicer::Toolpath t;
-  t.generator = "reentrant";
-  for (int k = 0; k < p.layers; ++k) {
-    t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, {k % 2 == 0 ? forward : backward}});
-  }
+std::unique_ptr<slicer::LayerSource> stacked(const ReentrantParams& p, const slicer::Stroke& forward) {
+  std::vector<std::vector<slicer::Stroke>> designs = {{forward}, {slicer::reversed(forward)}};
+  auto t = std::make_unique<slicer::RepeatedLayers>(std::move(designs), static_cast<std::size_t>(std::max(p.layers, 0)),
+                                                    p.layer_height_mm);
+  t->record.generator = "reentrant";
   return t;
 }
 
@@ -172,13 +170,15 @@ double centre_in_y(slicer::Stroke& s) {
 
 }  // namespace
 
-slicer::Toolpath generate_reentrant(const ReentrantParams& p) {
+std::unique_ptr<slicer::LayerSource> reentrant_layers(const ReentrantParams& p) {
   const ReentrantGeometry g = reentrant_geometry(p);
   const slicer::Stroke forward = serpentine(p, g);
-  slicer::Toolpath t = stacked(p, forward);
-  t.derived = reentrant_report(p, g, forward);
+  auto t = stacked(p, forward);
+  t->record.derived = reentrant_report(p, g, forward);
   return t;
 }
+
+slicer::Toolpath generate_reentrant(const ReentrantParams& p) { return slicer::collect(*reentrant_layers(p)); }
 
 slicer::Toolpath generate_reentrant_wrapped(const ReentrantParams& given, double period_mm) {
   ReentrantParams p = given;
@@ -193,7 +193,7 @@ slicer::Toolpath generate_reentrant_wrapped(const ReentrantParams& given, double
   g.width_mm = period_mm;
   g.depth_mm = centre_in_y(forward) + d;  // every line interior: both end rows are clipped
   g.band_gap_mm = p.cell_width_mm / 2 - d;  // no outer lines: every band's ribs are copies
-  slicer::Toolpath t = stacked(p, forward);
+  slicer::Toolpath t = slicer::collect(*stacked(p, forward));
   t.derived = reentrant_report(p, g, forward);
   t.derived["strands_why"] =
       "bands between neighbouring rib lines join at the free tips of the end rows, the last "

@@ -7,8 +7,10 @@
 // pass per band), so nothing crosses; they come out about 2 d wide.
 #pragma once
 
+#include <memory>
 #include <nlohmann/json.hpp>
 
+#include "slicer/layer_source.h"
 #include "slicer/params.h"
 #include "slicer/toolpath.h"
 
@@ -49,6 +51,7 @@ struct ReentrantGeometry {
 ReentrantGeometry reentrant_geometry(const ReentrantParams& p);
 // Layers centred on (0, 0); layer k at z = (k + 1) * layer height. Odd layers run the
 // serpentine backwards, so each layer starts where the previous one ended.
+std::unique_ptr<slicer::LayerSource> reentrant_layers(const ReentrantParams& p);
 slicer::Toolpath generate_reentrant(const ReentrantParams& p);
 // `--wrap full` round a circumference `period_mm` (x, periodic): a whole number of cells
 // round it (at least 2; the cell width adjusted to fit between 4 nozzles and the width at

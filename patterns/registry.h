@@ -1,10 +1,12 @@
 // The generators the CLI and job files can run, by name.
 #pragma once
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "slicer/layer_source.h"
 #include "slicer/params.h"
 #include "slicer/toolpath.h"
 
@@ -18,8 +20,9 @@ struct GeneratorSpec {
   std::string name;     // CLI sub-command and job "generator"
   std::string summary;  // one line for --help
   const slicer::ParamTable& (*table)();
-  // Builds the toolpath from values already checked by resolve_params; checks the rules
-  // that tie parameters together and throws InputError listing every violation.
+  // Builds the whole toolpath from values already checked by resolve_params (layers()
+  // collected); checks the rules that tie parameters together and throws InputError listing
+  // every violation.
   slicer::Toolpath (*generate)(const nlohmann::json& values);
   // For `--wrap full` on a cylinder: the same design made periodic in x with period
   // `period_mm` (the circumference where u is measured), a whole number of cells around it,
@@ -30,6 +33,13 @@ struct GeneratorSpec {
   // "<name>.wrap = full: ..." naming the limit (docs/wrapping.md). nullptr: cannot wrap
   // (every shipped design can).
   slicer::Toolpath (*generate_wrapped)(const nlohmann::json& values, double period_mm) = nullptr;
+
+  // The toolpath from values already checked by resolve_params, one layer at a time (the
+  // record, with `parameters` = values, is complete before the first layer); checks the
+  // rules that tie parameters together and throws InputError listing every violation. A stack
+  // estimated above kMaxToolpathSegments is refused before it is made; asking for the last
+  // layer throws if the real count exceeds it.
+  std::unique_ptr<slicer::LayerSource> (*layers)(const nlohmann::json& values);
 };
 
 const std::vector<GeneratorSpec>& generators();

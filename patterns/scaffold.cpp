@@ -193,41 +193,68 @@ ScaffoldGeometry scaffold_geometry(const ScaffoldParams& p) {
   return g;
 }
 
-slicer::Toolpath generate_scaffold(const ScaffoldParams& p) {
-  const ScaffoldGeometry g = scaffold_geometry(p);
-  const Rect grown{g.width_mm / 2 + p.overhang_mm, g.depth_mm / 2 + p.overhang_mm};
-  slicer::Toolpath t;
-  t.generator = "scaffold";
-  double inside_length = 0.0;
-  nlohmann::json per_layer = nlohmann::json::array();
-  for (int k = 0; k < p.layers; ++k) {
-    const double angle = p.angles_deg[static_cast<std::size_t>(k) % p.angles_deg.size()];
-    const LayerLines lines = layer_lines(p, g, angle);
-    inside_length += lines.inside_length_mm;
+namespace {
+
+// Layer k is the serpentine of angle k (mod the list) that starts nearest where layer k - 1
+// ended, joined to it by a link outside: each layer needs only the previous one's end.
+class ScaffoldLayers final : public slicer::LayerSource {
+ public:
+  explicit ScaffoldLayers(const ScaffoldParams& p)
+      : p_(p), g_(scaffold_geometry(p)), grown_{g_.width_mm / 2 + p.overhang_mm, g_.depth_mm / 2 + p.overhang_mm} {
+    // The lines depend only on the angle: one set per entry of the angle list.
+    const std::size_t kinds = std::min(p.angles_deg.size(), static_cast<std::size_t>(std::max(p.layers, 0)));
+    for (std::size_t i = 0; i < kinds; ++i) lines_.push_back(layer_lines(p, g_, p.angles_deg[i]));
+    double inside_length = 0.0;
+    nlohmann::json per_layer = nlohmann::json::array();
+    for (int k = 0; k < p.layers; ++k) {
+      inside_length += lines_[static_cast<std::size_t>(k) % lines_.size()].inside_length_mm;
+      if (k < static_cast<int>(p.angles_deg.size())) per_layer.push_back(lines_[static_cast<std::size_t>(k)].ends.size());
+    }
+    record.generator = "scaffold";
+    record.derived = scaffold_report(p, g_, g_.width_mm, per_layer, inside_length);
+    record.derived["link_clearance_mm"] = g_.link_clearance_mm;
+  }
+
+  std::size_t layer_count() const override { return static_cast<std::size_t>(std::max(p_.layers, 0)); }
+
+  slicer::Layer layer(std::size_t k) override {
+    const LayerLines& lines = lines_[k % lines_.size()];
     // The variant starting nearest the previous layer's end; only that one is built.
     int best = 0;
     double best_gap = std::numeric_limits<double>::infinity();
-    const Vec2 prev_end = k == 0 ? Vec2::Zero() : t.layers.back().strokes.back().end_mm();
     for (int variant = 0; variant < (k == 0 || lines.ends.empty() ? 1 : 4); ++variant) {
-      const double gap = (serpentine_start(lines, variant & 1, variant & 2) - prev_end).norm();
+      const double gap = (serpentine_start(lines, variant & 1, variant & 2) - prev_end_).norm();
       if (gap < best_gap - 1e-9) best_gap = gap, best = variant;
     }
-    Stroke stroke = serpentine(lines, grown, best & 1, best & 2);
+    Stroke stroke = serpentine(lines, grown_, best & 1, best & 2);
     if (k > 0) {
-      std::vector<Segment> segs = link(grown, g.link_clearance_mm, prev_end, stroke.start_mm);
+      std::vector<Segment> segs = link(grown_, g_.link_clearance_mm, prev_end_, stroke.start_mm);
       segs.insert(segs.end(), stroke.segments.begin(), stroke.segments.end());
-      stroke.start_mm = prev_end;
+      stroke.start_mm = prev_end_;
       stroke.segments = std::move(segs);
     }
-    stroke.width_mm = p.nozzle_mm;
-    stroke.height_mm = p.layer_height_mm;
-    t.layers.push_back({(k + 1) * p.layer_height_mm, p.layer_height_mm, {stroke}});
-    if (k < static_cast<int>(p.angles_deg.size())) per_layer.push_back(lines.ends.size());
+    stroke.width_mm = p_.nozzle_mm;
+    stroke.height_mm = p_.layer_height_mm;
+    prev_end_ = stroke.end_mm();
+    const int layer_number = static_cast<int>(k) + 1;
+    return {layer_number * p_.layer_height_mm, p_.layer_height_mm, {std::move(stroke)}};
   }
-  t.derived = scaffold_report(p, g, g.width_mm, per_layer, inside_length);
-  t.derived["link_clearance_mm"] = g.link_clearance_mm;
-  return t;
+
+ private:
+  ScaffoldParams p_;
+  ScaffoldGeometry g_;
+  Rect grown_;
+  std::vector<LayerLines> lines_;
+  Vec2 prev_end_ = Vec2::Zero();
+};
+
+}  // namespace
+
+std::unique_ptr<slicer::LayerSource> scaffold_layers(const ScaffoldParams& p) {
+  return std::make_unique<ScaffoldLayers>(p);
 }
+
+slicer::Toolpath generate_scaffold(const ScaffoldParams& p) { return slicer::collect(*scaffold_layers(p)); }
 
 nlohmann::json scaffold_report(const ScaffoldParams& p, const ScaffoldGeometry& g, double width_mm,
                                const nlohmann::json& filaments_per_layer, double inside_length_mm) {

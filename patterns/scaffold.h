@@ -3,8 +3,10 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <memory>
 #include <vector>
 
+#include "slicer/layer_source.h"
 #include "slicer/params.h"
 #include "slicer/toolpath.h"
 
@@ -40,7 +42,8 @@ ScaffoldGeometry scaffold_geometry(const ScaffoldParams& p);
 // inside the footprint over all layers.
 nlohmann::json scaffold_report(const ScaffoldParams& p, const ScaffoldGeometry& g, double width_mm,
                                const nlohmann::json& filaments_per_layer, double inside_length_mm);
-// Layers centred on (0, 0); layer k at z = (k + 1) * layer height.
+// Layers centred on (0, 0); layer k at z = (k + 1) * layer height, made one at a time.
+std::unique_ptr<slicer::LayerSource> scaffold_layers(const ScaffoldParams& p);
 slicer::Toolpath generate_scaffold(const ScaffoldParams& p);
 // `--wrap full` round a circumference `period_mm` (x, periodic; the width is ignored, the
 // depth is the length along the axis): layers at 90 deg lay a whole number of lines along

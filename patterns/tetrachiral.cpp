@@ -16,19 +16,26 @@ double tetrachiral_thesis_porosity(const ChiralParams& p, double r) {
 
 namespace {
 
-slicer::Toolpath with_thesis_porosity(slicer::Toolpath t, ChiralParams p) {
-  p.cell_mm = t.derived.value("cell_mm", p.cell_mm);
-  t.derived["porosity_thesis"] =
-      tetrachiral_thesis_porosity(p, t.derived.at("node_radius_mm").get<double>());
-  t.derived["porosity_thesis_formula"] = "1 - (2 l d / cos(atan(2r/l)) + pi r (3h + 2d)) / l^2";
+void add_thesis_porosity(nlohmann::json& derived, ChiralParams p) {
+  p.cell_mm = derived.value("cell_mm", p.cell_mm);
+  derived["porosity_thesis"] = tetrachiral_thesis_porosity(p, derived.at("node_radius_mm").get<double>());
+  derived["porosity_thesis_formula"] = "1 - (2 l d / cos(atan(2r/l)) + pi r (3h + 2d)) / l^2";
+}
+
+slicer::Toolpath with_thesis_porosity(slicer::Toolpath t, const ChiralParams& p) {
+  add_thesis_porosity(t.derived, p);
   return t;
 }
 
 }  // namespace
 
-slicer::Toolpath generate_tetrachiral(const ChiralParams& p) {
-  return with_thesis_porosity(generate_chiral(ChiralKind::Tetra, p), p);
+std::unique_ptr<slicer::LayerSource> tetrachiral_layers(const ChiralParams& p) {
+  auto t = chiral_layers(ChiralKind::Tetra, p);
+  add_thesis_porosity(t->record.derived, p);
+  return t;
 }
+
+slicer::Toolpath generate_tetrachiral(const ChiralParams& p) { return slicer::collect(*tetrachiral_layers(p)); }
 
 slicer::Toolpath generate_tetrachiral_wrapped(const ChiralParams& p, double period_mm) {
   const WrapFit fit = fit_around("tetrachiral", period_mm, p.cell_mm,

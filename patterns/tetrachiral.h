@@ -8,6 +8,7 @@
 
 namespace strand::patterns {
 
+std::unique_ptr<slicer::LayerSource> tetrachiral_layers(const ChiralParams& p);
 slicer::Toolpath generate_tetrachiral(const ChiralParams& p);
 // `--wrap full`: a sleeve periodic in x with period `period_mm`, an even number of cells
 // round it (cell adjusted to fit), frame and grip bands only at the two ends.

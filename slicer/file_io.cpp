@@ -7,13 +7,16 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string_view>
+#include <stdexcept>
 #include <system_error>
+#include <vector>
 
 #include "slicer/input_error.h"
 
@@ -88,6 +91,54 @@ void close_temp(std::ofstream& out, const std::string& target, const std::string
     std::error_code ec;
     fs::remove(temp, ec);
     forget_temp(temp);
+    throw InputError("output = " + target + ": write failed (disk full?)");
+  }
+}
+
+// Writes `head` into `joined`, then the whole of `body`, copied by the kernel (a plain
+// read/write loop where copy_file_range cannot copy between these files); removes `body`.
+// On failure both are removed and InputError names `target`.
+void join_head(const std::string& target, const std::string& head, const std::string& body,
+               const std::string& joined) {
+  register_temp(joined);
+  const int in = ::open(body.c_str(), O_RDONLY | O_CLOEXEC);
+  const int out = ::open(joined.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  bool ok = in >= 0 && out >= 0;
+  for (std::size_t done = 0; ok && done < head.size();) {
+    const ssize_t n = ::write(out, head.data() + done, head.size() - done);
+    ok = n > 0;
+    if (ok) done += static_cast<std::size_t>(n);
+  }
+  bool kernel_copy = true;
+  std::vector<char> buffer;
+  while (ok) {
+    ssize_t n = -1;
+    if (kernel_copy) {
+      n = ::copy_file_range(in, nullptr, out, nullptr, std::size_t{1} << 30, 0);
+      if (n < 0 && (errno == EXDEV || errno == ENOSYS || errno == EINVAL || errno == EOPNOTSUPP)) {
+        kernel_copy = false;
+        buffer.resize(std::size_t{1} << 16);
+        continue;
+      }
+    } else {
+      n = ::read(in, buffer.data(), buffer.size());
+      for (ssize_t w = 0; n > 0 && w < n;) {
+        const ssize_t m = ::write(out, buffer.data() + w, static_cast<std::size_t>(n - w));
+        if (m <= 0) n = -1;
+        else w += m;
+      }
+    }
+    if (n == 0) break;
+    ok = n > 0;
+  }
+  if (in >= 0) ::close(in);
+  if (out >= 0 && ::close(out) != 0) ok = false;
+  std::error_code ec;
+  fs::remove(body, ec);
+  forget_temp(body);
+  if (!ok) {
+    fs::remove(joined, ec);
+    forget_temp(joined);
     throw InputError("output = " + target + ": write failed (disk full?)");
   }
 }
@@ -248,6 +299,16 @@ std::ostream& OutputFiles::stage_stream(const std::string& path) {
   return *staged_.back().stream;
 }
 
+void OutputFiles::prepend(const std::string& path, std::string head) {
+  for (Staged& s : staged_) {
+    if (s.target == path && s.stream) {
+      s.head = std::move(head);
+      return;
+    }
+  }
+  throw std::logic_error("OutputFiles::prepend: " + path + " is not a staged stream");
+}
+
 void OutputFiles::commit() {
   for (Staged& s : staged_) {
     if (!s.stream) continue;
@@ -255,6 +316,12 @@ void OutputFiles::commit() {
     auto stream = std::move(s.stream);
     try {
       close_temp(*stream, s.target, s.temp);
+      if (!s.head.empty()) {
+        const std::string joined = s.target + ".strand-tmp-joined";
+        join_head(s.target, s.head, s.temp, joined);
+        s.temp = joined;
+        s.head.clear();
+      }
     } catch (...) {
       s.temp.clear();
       throw;

@@ -39,6 +39,10 @@ class OutputFiles {
   // so the whole file never sits in memory): returns the temp file's stream, valid until
   // commit(), which flushes it and throws InputError if any write failed.
   std::ostream& stage_stream(const std::string& path);
+  // Text that goes before what was streamed into `path` (a file whose first lines are known
+  // only once its body is written, like G-code headers with totals). At commit the file is
+  // put together in the kernel (copy_file_range), without reading the body back.
+  void prepend(const std::string& path, std::string head);
   void commit();
   // Test hook: called before each rename of commit() with the number done so far.
   void on_rename(std::function<void(std::size_t)> hook) { rename_hook_ = std::move(hook); }
@@ -47,6 +51,7 @@ class OutputFiles {
   struct Staged {
     std::string target, temp;
     std::unique_ptr<std::ofstream> stream;  // stage_stream only
+    std::string head;                        // prepend only
   };
   void check_target(const std::string& path) const;
   std::vector<Staged> staged_;

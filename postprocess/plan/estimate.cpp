@@ -18,15 +18,25 @@ double move_length(const slicer::Vec3& from, const slicer::Move& mv) {
   return std::hypot(xy, mv.end_mm.z() - from.z());
 }
 
-Estimate estimate(const slicer::MotionProgram& p) {
-  Estimate e;
-  for (std::size_t i = 0; i < p.layers.size(); ++i) {
-    e.layers.push_back({static_cast<int>(i), p.layers[i].z_mm});
+struct EstimateStream::Impl {
+  explicit Impl(const machines::MachineProfile* m) {
+    if (m) {
+      time_options = time_options_for(*m);
+      timer = std::make_unique<TrapezoidTimer>(time_options);
+    }
   }
-  slicer::Vec3 at = p.start_mm;
-  bool depositing = false;
-  int last_layer = -2;
-  for (const auto& mv : p.moves) {
+
+  void add(const slicer::MotionProgram& p) {
+    if (!started) at = p.start_mm;
+    started = true;
+    for (std::size_t i = e.layers.size(); i < p.layers.size(); ++i) {
+      e.layers.push_back({static_cast<int>(i), p.layers[i].z_mm});
+    }
+    for (const auto& mv : p.moves) add_move(p, mv);
+    if (timer) timer->add(p);
+  }
+
+  void add_move(const slicer::MotionProgram& p, const slicer::Move& mv) {
     LayerEstimate* le = mv.layer >= 0 && mv.layer < static_cast<int>(e.layers.size())
                             ? &e.layers[static_cast<std::size_t>(mv.layer)]
                             : nullptr;
@@ -35,9 +45,9 @@ Estimate estimate(const slicer::MotionProgram& p) {
     if (mv.kind == MoveKind::Dwell) {
       e.time_naive_s += slicer::dwell_seconds(p, mv);
       if (le) le->time_naive_s += slicer::dwell_seconds(p, mv);
-      continue;
+      return;
     }
-    if (mv.kind == MoveKind::Raw) continue;
+    if (mv.kind == MoveKind::Raw) return;
     const double len = move_length(at, mv);
     const double t = mv.feed_mm_per_min > 0 ? len / slicer::mm_per_min_to_mm_per_s(mv.feed_mm_per_min) : 0.0;
     e.time_naive_s += t;
@@ -61,21 +71,44 @@ Estimate estimate(const slicer::MotionProgram& p) {
     }
     at = mv.end_mm;
   }
-  return e;
+
+  Estimate finish() {
+    if (!timer) return std::move(e);
+    const MotionTime t = timer->finish();
+    e.time_trapezoid_s = t.total_s;
+    for (std::size_t i = 0; i < e.layers.size(); ++i) {
+      auto& l = e.layers[i];
+      l.time_trapezoid_s = i < t.layer_s.size() ? t.layer_s[i] : 0.0;
+      l.time_naive_s += l.strands * time_options.strand_start_dwell_s;
+      e.time_naive_s += l.strands * time_options.strand_start_dwell_s;
+    }
+    return std::move(e);
+  }
+
+  Estimate e;
+  slicer::Vec3 at = slicer::Vec3::Zero();
+  bool started = false;
+  bool depositing = false;
+  int last_layer = -2;
+  TimeOptions time_options;
+  std::unique_ptr<TrapezoidTimer> timer;
+};
+
+EstimateStream::EstimateStream(const machines::MachineProfile* m) : impl_(std::make_unique<Impl>(m)) {}
+EstimateStream::~EstimateStream() = default;
+void EstimateStream::add(const slicer::MotionProgram& piece) { impl_->add(piece); }
+Estimate EstimateStream::finish() { return impl_->finish(); }
+
+Estimate estimate(const slicer::MotionProgram& p) {
+  EstimateStream s(nullptr);
+  s.add(p);
+  return s.finish();
 }
 
 Estimate estimate(const slicer::MotionProgram& p, const machines::MachineProfile& m) {
-  Estimate e = estimate(p);
-  const TimeOptions o = time_options_for(m);
-  const MotionTime t = trapezoid_time(p, o);
-  e.time_trapezoid_s = t.total_s;
-  for (std::size_t i = 0; i < e.layers.size(); ++i) {
-    auto& l = e.layers[i];
-    l.time_trapezoid_s = t.layer_s[i];
-    l.time_naive_s += l.strands * o.strand_start_dwell_s;
-    e.time_naive_s += l.strands * o.strand_start_dwell_s;
-  }
-  return e;
+  EstimateStream s(&m);
+  s.add(p);
+  return s.finish();
 }
 
 }  // namespace strand::post

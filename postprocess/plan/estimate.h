@@ -1,6 +1,7 @@
 // Estimates from a MotionProgram: lengths, ink volume, strands and time per layer.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "machines/profile.h"
@@ -35,5 +36,20 @@ Estimate estimate(const slicer::MotionProgram& program);
 // Also the trapezoidal time with the machine's limits; valve lead dwells (one per strand)
 // count in both times.
 Estimate estimate(const slicer::MotionProgram& program, const machines::MachineProfile& m);
+
+// The same sums for a program that passes in pieces (one layer at a time: planner.h's
+// LayerPlanner): add() each piece in order, then finish() once. With a machine (not null,
+// outliving the stream) the trapezoidal time too. Only per-layer sums are kept.
+class EstimateStream {
+ public:
+  explicit EstimateStream(const machines::MachineProfile* m);
+  ~EstimateStream();
+  void add(const slicer::MotionProgram& piece);
+  Estimate finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace strand::post

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "postprocess/plan/arc_segmentation.h"
 #include "slicer/units.h"
@@ -26,23 +27,6 @@ struct Block {
 
 // Flow state a move leaves the machine in, for valve machines: 0 closed, 1 open.
 int flow_state(const Move& mv) { return mv.kind == MoveKind::Deposit && !mv.coast ? 1 : 0; }
-
-// Dwell time per layer bucket (index layer + 1; 0 = before the first layer): explicit dwells
-// and the lead dwell at every strand start.
-std::vector<double> dwell_by_layer(const slicer::MotionProgram& p, const TimeOptions& o) {
-  std::vector<double> dwell(p.layers.size() + 1, 0.0);
-  int flow = 0;
-  for (const auto& mv : p.moves) {
-    const auto bucket = static_cast<std::size_t>(std::clamp(mv.layer + 1, 0, static_cast<int>(p.layers.size())));
-    if (mv.kind == MoveKind::Dwell || mv.kind == MoveKind::Raw) {
-      dwell[bucket] += mv.kind == MoveKind::Dwell ? slicer::dwell_seconds(p, mv) : 0.0;
-      continue;
-    }
-    if (mv.kind == MoveKind::Deposit && !mv.coast && flow == 0) dwell[bucket] += o.strand_start_dwell_s;
-    flow = flow_state(mv);
-  }
-  return dwell;
-}
 
 // The firmware-style planner run as a stream: blocks wait in a queue until one is a cut,
 // a block whose entry speed the backward pass can no longer lower (it can stop from its
@@ -90,19 +74,45 @@ class StreamPlanner {
   bool head_final_ = false;
 };
 
-// Cuts the program into straight blocks (arcs as chords) with their junction limits.
-void stream_blocks(const slicer::MotionProgram& p, const TimeOptions& o, StreamPlanner& planner) {
-  Vec3 at = p.start_mm;
-  bool stop = true;
-  bool any = false;  // a block was made (the first one starts at rest)
-  Vec3 prev_unit = Vec3::Zero();
-  double prev_v = 0.0;
-  int flow = 0;
-  std::vector<Vec3> points;
-  for (const auto& mv : p.moves) {
+}  // namespace
+
+// Cuts the program into straight blocks (arcs as chords) with their junction limits and
+// streams them through the planner; dwell time is counted per layer as it passes.
+struct TrapezoidTimer::Impl {
+  explicit Impl(const TimeOptions& options) : o(options), planner(options.acceleration_mm_per_s2, t) {}
+
+  void add(const slicer::MotionProgram& p) {
+    if (!started) at = p.start_mm;
+    started = true;
+    if (t.layer_s.size() < p.layers.size()) t.layer_s.resize(p.layers.size(), 0.0);
+    add_dwells(p);
+    for (const auto& mv : p.moves) add_move(mv);
+  }
+
+  // Dwell time per layer bucket (layer + 1; 0 = before the first layer): explicit dwells and
+  // the lead dwell at every strand start, summed per bucket and then added bucket by bucket.
+  void add_dwells(const slicer::MotionProgram& p) {
+    std::map<int, double> dwell;
+    const int layers = static_cast<int>(p.layers.size());
+    for (const auto& mv : p.moves) {
+      const int bucket = std::clamp(mv.layer + 1, 0, layers);
+      if (mv.kind == MoveKind::Dwell || mv.kind == MoveKind::Raw) {
+        dwell[bucket] += mv.kind == MoveKind::Dwell ? slicer::dwell_seconds(p, mv) : 0.0;
+        continue;
+      }
+      if (mv.kind == MoveKind::Deposit && !mv.coast && dwell_flow == 0) dwell[bucket] += o.strand_start_dwell_s;
+      dwell_flow = flow_state(mv);
+    }
+    for (const auto& [bucket, seconds] : dwell) {
+      t.total_s += seconds;
+      if (bucket > 0) t.layer_s[static_cast<std::size_t>(bucket - 1)] += seconds;
+    }
+  }
+
+  void add_move(const Move& mv) {
     if (mv.kind == MoveKind::Dwell || mv.kind == MoveKind::Raw) {
       stop = true;
-      continue;
+      return;
     }
     if (o.stop_at_flow_change && flow_state(mv) != flow) stop = true;
     flow = flow_state(mv);
@@ -110,8 +120,8 @@ void stream_blocks(const slicer::MotionProgram& p, const TimeOptions& o, StreamP
     if (mv.is_arc) {
       const auto pts = segment_arc(at.head<2>(), mv.center_mm, mv.end_mm.head<2>(), mv.ccw, o.arc_tolerance_mm);
       for (std::size_t i = 0; i < pts.size(); ++i) {
-        const double t = static_cast<double>(i + 1) / static_cast<double>(pts.size());
-        points.emplace_back(pts[i].x(), pts[i].y(), at.z() + t * (mv.end_mm.z() - at.z()));
+        const double f = static_cast<double>(i + 1) / static_cast<double>(pts.size());
+        points.emplace_back(pts[i].x(), pts[i].y(), at.z() + f * (mv.end_mm.z() - at.z()));
       }
     } else {
       points.push_back(mv.end_mm);
@@ -134,9 +144,28 @@ void stream_blocks(const slicer::MotionProgram& p, const TimeOptions& o, StreamP
       at = q;
     }
   }
-}
 
-}  // namespace
+  TimeOptions o;
+  MotionTime t;
+  StreamPlanner planner;
+  bool started = false;
+  Vec3 at = Vec3::Zero();
+  bool stop = true;
+  bool any = false;  // a block was made (the first one starts at rest)
+  Vec3 prev_unit = Vec3::Zero();
+  double prev_v = 0.0;
+  int flow = 0;
+  int dwell_flow = 0;
+  std::vector<Vec3> points;
+};
+
+TrapezoidTimer::TrapezoidTimer(const TimeOptions& o) : impl_(std::make_unique<Impl>(o)) {}
+TrapezoidTimer::~TrapezoidTimer() = default;
+void TrapezoidTimer::add(const slicer::MotionProgram& piece) { impl_->add(piece); }
+MotionTime TrapezoidTimer::finish() {
+  impl_->planner.finish();
+  return std::move(impl_->t);
+}
 
 TimeOptions time_options_for(const machines::MachineProfile& m) {
   TimeOptions o;
@@ -198,17 +227,9 @@ double block_time_s(double length_mm, double v_in, double v_max, double v_out, d
 }
 
 MotionTime trapezoid_time(const slicer::MotionProgram& p, const TimeOptions& o) {
-  MotionTime t;
-  t.layer_s.assign(p.layers.size(), 0.0);
-  const std::vector<double> dwell = dwell_by_layer(p, o);
-  for (std::size_t i = 0; i < dwell.size(); ++i) {
-    t.total_s += dwell[i];
-    if (i > 0) t.layer_s[i - 1] += dwell[i];
-  }
-  StreamPlanner planner(o.acceleration_mm_per_s2, t);
-  stream_blocks(p, o, planner);
-  planner.finish();
-  return t;
+  TrapezoidTimer timer(o);
+  timer.add(p);
+  return timer.finish();
 }
 
 }  // namespace strand::post

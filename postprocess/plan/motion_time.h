@@ -2,6 +2,7 @@
 // programmed feed, and Marlin-style junction-deviation limits on the speed at corners.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "machines/profile.h"
@@ -29,6 +30,22 @@ struct MotionTime {
 };
 
 MotionTime trapezoid_time(const slicer::MotionProgram& p, const TimeOptions& o);
+
+// The same for a program that passes in pieces (one layer at a time, planner.h's
+// LayerPlanner): add() each piece in order (its start_mm is used for the first only; its
+// layers list every layer so far), then finish() once. Memory is bounded by the distance
+// between the planner's cuts, not by the program.
+class TrapezoidTimer {
+ public:
+  explicit TrapezoidTimer(const TimeOptions& o);
+  ~TrapezoidTimer();
+  void add(const slicer::MotionProgram& piece);
+  MotionTime finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Highest speed through the corner between unit directions u1 then u2 (mm/s) by Marlin's
 // junction deviation: sin(theta/2) = sqrt((1 - cos theta) / 2) with cos theta = -u1.u2,

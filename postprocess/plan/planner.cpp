@@ -26,32 +26,40 @@ constexpr std::size_t kTrimEveryLayers = 64;
 
 class Planner {
  public:
-  Planner(const machines::MachineProfile& m, const PlanOptions& o) : m_(m), o_(o) {}
+  Planner(const machines::MachineProfile& m, const PlanOptions& o, slicer::MotionProgram& out)
+      : m_(m), o_(o), p_(out), offset_(m.volume.part_center_mm) {}
 
   // With `release` (the same layers as t's), each layer's strokes are freed once planned.
-  slicer::MotionProgram run(const slicer::Toolpath& t, std::vector<slicer::Layer>* release) {
-    offset_ = m_.volume.part_center_mm;
-    p_.moves.reserve(move_bound(t));
+  void run(const slicer::Toolpath& t, std::vector<slicer::Layer>* release) {
+    std::size_t bound = 1;  // the approach above the first point
+    for (const auto& layer : t.layers) bound += move_bound(layer);
+    p_.moves.reserve(bound);
     p_.layers.reserve(t.layers.size());
     for (std::size_t li = 0; li < t.layers.size(); ++li) {
-      const auto& layer = t.layers[li];
-      p_.layers.push_back({layer.z_mm, layer.height_mm});
-      layer_ = static_cast<int>(li);
-      for (const auto& stroke : layer.strokes) add_stroke(stroke, layer.z_mm);
+      add_layer(t.layers[li]);
       if (release) {
         std::vector<slicer::Stroke>().swap((*release)[li].strokes);
         if (li % kTrimEveryLayers == kTrimEveryLayers - 1) slicer::release_free_memory();
       }
     }
-    return std::move(p_);
   }
 
- private:
-  // Moves run() can make at most (travels skipped when already in place), so the program is
-  // allocated once: a growing vector would briefly hold two or three times its size.
-  std::size_t move_bound(const slicer::Toolpath& t) const {
+  // The next layer's moves, appended to the program.
+  void add_layer(const slicer::Layer& layer) {
+    layer_ = static_cast<int>(p_.layers.size());
+    p_.layers.push_back({layer.z_mm, layer.height_mm});
+    for (const auto& stroke : layer.strokes) add_stroke(stroke, layer.z_mm);
+  }
+
+  const Vec3& position() const { return pos_; }
+  bool started() const { return started_; }
+
+  // Moves add_layer() can make at most for `layer` (travels skipped when already in place),
+  // so the program is allocated once: a growing vector would briefly hold two or three times
+  // its size.
+  std::size_t move_bound(const slicer::Layer& layer) const {
     std::size_t n = 1;  // the approach above the first point
-    for (const auto& layer : t.layers) {
+    {
       for (const auto& s : layer.strokes) {
         n += 3;  // lift, cross, lower
         Vec2 at = s.start_mm;
@@ -179,7 +187,7 @@ class Planner {
 
   const machines::MachineProfile& m_;
   const PlanOptions& o_;
-  slicer::MotionProgram p_;
+  slicer::MotionProgram& p_;
   Vec2 offset_ = Vec2::Zero();
   Vec3 pos_ = Vec3::Zero();
   bool started_ = false;
@@ -208,7 +216,8 @@ namespace {
 
 slicer::MotionProgram plan_layers(const slicer::Toolpath& t, const machines::MachineProfile& machine,
                                   const PlanOptions& options, std::vector<slicer::Layer>* release) {
-  slicer::MotionProgram p = Planner(machine, options).run(t, release);
+  slicer::MotionProgram p;
+  Planner(machine, options, p).run(t, release);
   if (machine.deposition.model == machines::DepositionModel::Valve && machine.deposition.lag_s > 0) {
     apply_valve_lag(p, machine.deposition.lag_s);
   }
@@ -226,6 +235,37 @@ slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachinePro
 slicer::MotionProgram plan_and_release(slicer::Toolpath& t, const machines::MachineProfile& machine,
                                        const PlanOptions& options) {
   return plan_layers(t, machine, options, &t.layers);
+}
+
+struct LayerPlanner::State {
+  State(const machines::MachineProfile& m, const PlanOptions& o) : machine(m), options(o), planner(m, options, chunk) {}
+  const machines::MachineProfile& machine;
+  PlanOptions options;
+  slicer::MotionProgram chunk;
+  Planner planner;
+};
+
+LayerPlanner::LayerPlanner(const machines::MachineProfile& machine, const PlanOptions& options)
+    : s_(std::make_unique<State>(machine, options)) {}
+
+LayerPlanner::~LayerPlanner() = default;
+
+const slicer::MotionProgram& LayerPlanner::plan(const slicer::Layer& layer) {
+  slicer::MotionProgram& p = s_->chunk;
+  p.moves.clear();
+  p.texts.clear();
+  p.dwells_s.clear();
+  const bool first = !s_->planner.started();
+  const Vec3 before = s_->planner.position();
+  p.moves.reserve(s_->planner.move_bound(layer));
+  s_->planner.add_layer(layer);
+  if (!first) p.start_mm = before;  // the first layer's start is its approach point
+  const auto& m = s_->machine;
+  if (m.deposition.model == machines::DepositionModel::Valve && m.deposition.lag_s > 0) {
+    apply_valve_lag(p, m.deposition.lag_s);
+  }
+  check_fits(p, m);
+  return p;
 }
 
 }  // namespace strand::post

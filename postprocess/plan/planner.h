@@ -10,6 +10,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 
 #include "machines/profile.h"
 #include "slicer/motion.h"
@@ -34,5 +35,25 @@ slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachinePro
 // stays): a large job never holds its whole toolpath and its whole program at once.
 slicer::MotionProgram plan_and_release(slicer::Toolpath& t, const machines::MachineProfile& machine,
                                        const PlanOptions& options);
+
+// The same one layer at a time, for a toolpath that is never whole (slicer/layer_source.h):
+// what crosses layers (the nozzle's position, the approach before the first layer) is kept,
+// each layer's moves replace the last one's. The moves of plan() for the whole toolpath are
+// the concatenation of these, layer by layer (a strand never spans layers: each layer starts
+// with a travel to its z).
+class LayerPlanner {
+ public:
+  LayerPlanner(const machines::MachineProfile& machine, const PlanOptions& options);
+  ~LayerPlanner();
+  // Plans the next layer: the returned program (valid until the next call) holds that
+  // layer's moves, every layer's z and height so far (moves index them as in the whole
+  // program) and, as start_mm, the position before its first move. Valve lag is applied;
+  // throws InputError if a move leaves the build volume.
+  const slicer::MotionProgram& plan(const slicer::Layer& layer);
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
 
 }  // namespace strand::post

@@ -1,6 +1,9 @@
 // Planning, estimating, header writing and emission for one toolpath.
 #include "postprocess/plan/produce.h"
 
+#include <memory>
+#include <sstream>
+
 #include "machines/gcode_emitter.h"
 #include "machines/gcode_format.h"
 #include "postprocess/plan/estimate.h"
@@ -10,6 +13,22 @@
 namespace strand::post {
 
 namespace {
+
+// Appends a planned piece (LayerPlanner's) to the whole program it is part of.
+void append(slicer::MotionProgram& whole, const slicer::MotionProgram& piece) {
+  if (whole.layers.empty() && whole.moves.empty()) whole.start_mm = piece.start_mm;
+  for (std::size_t i = whole.layers.size(); i < piece.layers.size(); ++i) whole.layers.push_back(piece.layers[i]);
+  for (slicer::Move mv : piece.moves) {
+    if (mv.kind == slicer::MoveKind::Raw) {
+      mv.side_index = static_cast<std::uint32_t>(whole.texts.size());
+      whole.texts.push_back(slicer::raw_text(piece, mv));
+    } else if (mv.kind == slicer::MoveKind::Dwell) {
+      mv.side_index = static_cast<std::uint32_t>(whole.dwells_s.size());
+      whole.dwells_s.push_back(slicer::dwell_seconds(piece, mv));
+    }
+    whole.moves.push_back(mv);
+  }
+}
 
 std::vector<std::string> header(const slicer::Toolpath& t, const machines::MachineProfile& m,
                                 const PlanOptions& o, const nlohmann::json& report) {
@@ -53,6 +72,59 @@ Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
   slicer::MotionProgram program = plan_and_release(t, m, options);
   return produce_program(t, std::move(program), m, options, gcode_path, viewer_e, streams,
                          progress);
+}
+
+namespace {
+
+// One file's body (all but its head) going to a stream or kept in memory.
+struct Body {
+  Body(const machines::MachineProfile& m, const machines::EmitOptions& eo, std::ostream* stream)
+      : writer(m, eo, stream ? *stream : memory) {}
+  std::ostringstream memory;
+  machines::GcodeBodyWriter writer;
+};
+
+}  // namespace
+
+Produced produce_layers(slicer::LayerSource& source, const machines::MachineProfile& m,
+                        const PlanOptions& options, const ProduceOptions& po) {
+  const slicer::Toolpath& record = source.record;
+  const std::size_t layers = source.layer_count();
+  slicer::progress_phase(po.progress, "planning and writing G-code", layers);
+  LayerPlanner planner(m, options);
+  EstimateStream estimate(&m);
+  machines::EmitOptions eo;
+  Body gcode(m, eo, po.streams.gcode);
+  std::unique_ptr<Body> viewer;
+  if (po.viewer_e) {
+    machines::EmitOptions veo;
+    veo.viewer_e = true;
+    viewer = std::make_unique<Body>(m, veo, po.streams.viewer_gcode);
+  }
+  Produced out;
+  for (std::size_t k = 0; k < layers; ++k) {
+    const slicer::MotionProgram& piece = planner.plan(source.layer(k));
+    estimate.add(piece);
+    gcode.writer.add(piece);
+    if (viewer) viewer->writer.add(piece);
+    if (po.keep_program) append(out.program, piece);
+    slicer::progress_step(po.progress, k + 1);
+  }
+  gcode.writer.finish();
+  if (viewer) viewer->writer.finish();
+  const Estimate e = estimate.finish();
+  out.report = make_report(record, m, e, po.gcode_path);
+  out.report["parameters"]["arc-tolerance"] = options.arc_tolerance_mm;
+  out.summary = summary_text(out.report);
+  eo.header = header(record, m, options, out.report);
+  out.gcode_head = machines::gcode_head(m, eo);
+  if (!po.streams.gcode) out.gcode = out.gcode_head + std::move(gcode.memory).str();
+  if (viewer) {
+    eo.viewer_e = true;
+    out.viewer_gcode_head = machines::gcode_head(m, eo);
+    if (!po.streams.viewer_gcode) out.viewer_gcode = out.viewer_gcode_head + std::move(viewer->memory).str();
+  }
+  return out;
 }
 
 Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,

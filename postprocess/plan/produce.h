@@ -7,6 +7,7 @@
 
 #include "machines/profile.h"
 #include "postprocess/plan/planner.h"
+#include "slicer/layer_source.h"
 #include "slicer/motion.h"
 #include "slicer/progress.h"
 #include "slicer/toolpath.h"
@@ -16,6 +17,9 @@ namespace strand::post {
 struct Produced {
   std::string gcode;         // empty when streamed (GcodeStreams)
   std::string viewer_gcode;  // preview-only copy with computed E; empty unless asked for
+  // produce_layers with streams: the files' first lines, which go before the streamed bodies.
+  std::string gcode_head;
+  std::string viewer_gcode_head;
   nlohmann::json report;
   std::string summary;
   slicer::MotionProgram program;
@@ -37,6 +41,26 @@ Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
                  const PlanOptions& options, const std::string& gcode_path,
                  bool viewer_e = false, const GcodeStreams& streams = {},
                  slicer::Progress* progress = nullptr);
+// Options of produce_layers.
+struct ProduceOptions {
+  std::string gcode_path;  // only recorded in the report
+  bool viewer_e = false;   // also the preview-only variant (machines::EmitOptions::viewer_e)
+  // Null: the files are returned whole in Produced::gcode / viewer_gcode. Set: the streams
+  // get each file's body (all but its head, which needs the totals) as it is formatted and
+  // Produced::gcode_head / viewer_gcode_head the head that goes before it.
+  GcodeStreams streams;
+  slicer::Progress* progress = nullptr;  // told "planning and writing G-code", a step per layer
+  bool keep_program = false;              // also return the whole MotionProgram
+};
+
+// The job one layer at a time: each layer from the source is planned, estimated and written
+// before the next is made, so memory does not grow with the job (only per-layer sums, the
+// report and the header lines do). The bytes are those of produce() on the whole toolpath.
+// Throws InputError if the part does not fit (the streams then hold a partial body: write
+// them to temp files that are dropped, slicer::OutputFiles).
+Produced produce_layers(slicer::LayerSource& source, const machines::MachineProfile& m,
+                        const PlanOptions& options, const ProduceOptions& produce_options);
+
 // The same from an already planned program (conformal printing plans through a surface).
 Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,
                          const machines::MachineProfile& m, const PlanOptions& options,

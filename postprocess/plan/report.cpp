@@ -57,8 +57,8 @@ nlohmann::json make_report(const slicer::Toolpath& t, const machines::MachinePro
                   {"syringe_loads", static_cast<int>(std::ceil(slicer::mm3_to_ml(e.volume_mm3) / m.deposition.reservoir_ml - 1e-9))},
                   {"time_naive_s", round_to(e.time_naive_s, 1)},
                   {"time_trapezoid_s", round_to(e.time_trapezoid_s, 1)}}},
-      {"strands_per_layer", strands},
-      {"layers", layers},
+      {"strands_per_layer", std::move(strands)},  // moved: a tall job has thousands of layers
+      {"layers", std::move(layers)},
   };
 }
 

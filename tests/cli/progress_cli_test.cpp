@@ -86,16 +86,16 @@ TEST(ProgressCli, ProgressFlagPrintsOnePlainLinePerPhase) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, plain.out) << "progress never touches stdout";
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << "no bar without a terminal";
-  for (const char* line : {"scaffold: 1/5 generating (", "scaffold: 2/5 planning (",
-                           "scaffold: 3/5 writing G-code (", "scaffold: 5/5 writing files (",
-                           "scaffold: done in "}) {
+  // Generation, planning and writing run layer by layer: one phase.
+  for (const char* line : {"scaffold: 1/4 generating (", "scaffold: 2/4 planning and writing G-code (",
+                           "scaffold: 4/4 writing files (", "scaffold: done in "}) {
     EXPECT_NE(r.err.find(line), std::string::npos) << line << " in:\n" << r.err;
   }
   // One line per phase, not per layer or step.
   EXPECT_LE(std::count(r.err.begin(), r.err.end(), '\n'), 7) << r.err;
   // The global flag may also come before the command.
   const auto before = run_strand("--progress " + kScaffold, dir);
-  EXPECT_NE(before.err.find("scaffold: 1/5 generating"), std::string::npos) << before.err;
+  EXPECT_NE(before.err.find("scaffold: 1/4 generating"), std::string::npos) << before.err;
 }
 
 TEST(ProgressCli, EveryLongCommandReportsItsPhases) {
@@ -148,8 +148,8 @@ TEST(ProgressCli, ABarWithPhaseAndTimeOnATerminalErasedAtTheEnd) {
   const PtyRun r = run_on_pty(args, dir);
   ASSERT_EQ(r.exit_code, 0) << r.terminal;
   EXPECT_NE(r.terminal.find("\r\033[Kscaffold ["), std::string::npos) << r.terminal;
-  EXPECT_NE(r.terminal.find("] 1/5 generating"), std::string::npos) << r.terminal;
-  EXPECT_NE(r.terminal.find("] 3/5 writing G-code"), std::string::npos) << r.terminal;
+  EXPECT_NE(r.terminal.find("] 1/4 generating"), std::string::npos) << r.terminal;
+  EXPECT_NE(r.terminal.find("] 2/4 planning and writing G-code"), std::string::npos) << r.terminal;
   EXPECT_NE(r.terminal.find(" elapsed"), std::string::npos) << r.terminal;
   EXPECT_TRUE(r.terminal.ends_with("\r\033[K")) << "the bar is erased: " << r.terminal;
   EXPECT_EQ(r.terminal.find('\n'), std::string::npos) << "redrawn in place: " << r.terminal;

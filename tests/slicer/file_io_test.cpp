@@ -84,6 +84,37 @@ TEST(OutputFiles, StreamedFileAppearsWholeAtCommit) {
   EXPECT_EQ(entries(dir), 2u) << "no temp file left";
 }
 
+// A body streamed first and its head given last (G-code whose header holds the totals) is
+// put together at commit: the head, then every byte of the body, and no temp left.
+TEST(OutputFiles, APrependedHeadGoesBeforeTheStreamedBody) {
+  const auto dir = testing::fresh_dir("io-prepend");
+  std::string expected_body;
+  {
+    OutputFiles out;
+    std::ostream& s = out.stage_stream(dir + "/job.gcode");
+    for (int i = 0; i < 300000; ++i) {  // 4 MB: more than one copy call's worth is fine too
+      const std::string line = "G1 X" + std::to_string(i) + "\n";
+      s << line;
+      expected_body += line;
+    }
+    out.stage(dir + "/report.json", "{}");
+    out.prepend(dir + "/job.gcode", "; head line 1\n; head line 2\n");
+    EXPECT_THROW(out.prepend(dir + "/report.json", "x"), std::logic_error) << "only a streamed file has a body to go after";
+    EXPECT_FALSE(fs::exists(dir + "/job.gcode"));
+    out.commit();
+  }
+  EXPECT_EQ(testing::slurp(dir + "/job.gcode"), "; head line 1\n; head line 2\n" + expected_body);
+  EXPECT_EQ(entries(dir), 2u) << "no temp file left";
+
+  const auto abandoned = testing::fresh_dir("io-prepend-abort");
+  {
+    OutputFiles out;
+    out.stage_stream(abandoned + "/job.gcode") << "body";
+    out.prepend(abandoned + "/job.gcode", "head\n");
+  }
+  EXPECT_EQ(entries(abandoned), 0u) << "an uncommitted set leaves nothing";
+}
+
 TEST(OutputFiles, UncommittedStreamLeavesNothing) {
   const auto dir = testing::fresh_dir("io-stream-abort");
   {
