@@ -291,9 +291,11 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   r.toolpath.derived["mesh_repairs"] = r.part.changes;
   r.toolpath.derived["mesh_notes"] = r.notes;
   r.toolpath.derived["skipped_regions"] = skipped;
+  // Layer by layer like every job (postprocess/plan/produce.h), the file kept in memory: the
+  // slice previews and checks read the finished text.
   r.produced = post::produce(r.toolpath, machine,
                              post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output,
-                             s.viewer_e, {}, s.progress);
+                             s.viewer_e, s.progress);
   return r;
 }
 
@@ -315,7 +317,7 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
   r.toolpath.parameters["rotate"] = s.rotate;
   r.toolpath.derived["substrate"] = surface.describe();
   r.produced = post::produce_program(r.toolpath, std::move(program), machine, options, s.output,
-                                     s.viewer_e, {}, s.progress);
+                                     s.viewer_e, s.progress);
   r.part.mesh = substrate;  // drawn under the path by --preview
   return r;
 }

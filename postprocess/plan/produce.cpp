@@ -65,15 +65,6 @@ std::vector<std::string> header(const slicer::Toolpath& t, const machines::Machi
 
 }  // namespace
 
-Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
-                 const PlanOptions& options, const std::string& gcode_path, bool viewer_e,
-                 const GcodeStreams& streams, slicer::Progress* progress) {
-  slicer::progress_phase(progress, "planning");
-  slicer::MotionProgram program = plan_and_release(t, m, options);
-  return produce_program(t, std::move(program), m, options, gcode_path, viewer_e, streams,
-                         progress);
-}
-
 namespace {
 
 // One file's body (all but its head) going to a stream or kept in memory.
@@ -127,10 +118,21 @@ Produced produce_layers(slicer::LayerSource& source, const machines::MachineProf
   return out;
 }
 
+Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
+                 const PlanOptions& options, const std::string& gcode_path, bool viewer_e,
+                 slicer::Progress* progress) {
+  slicer::ToolpathLayers source(std::move(t));
+  ProduceOptions po;
+  po.gcode_path = gcode_path;
+  po.viewer_e = viewer_e;
+  po.progress = progress;
+  po.keep_program = true;
+  return produce_layers(source, m, options, po);
+}
+
 Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,
                          const machines::MachineProfile& m, const PlanOptions& options,
-                         const std::string& gcode_path, bool viewer_e,
-                         const GcodeStreams& streams, slicer::Progress* progress) {
+                         const std::string& gcode_path, bool viewer_e, slicer::Progress* progress) {
   Produced out;
   out.program = std::move(program);
   const Estimate e = estimate(out.program, m);
@@ -141,19 +143,11 @@ Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram progra
   eo.header = header(t, m, options, out.report);
   slicer::progress_phase(progress, "writing G-code", out.program.moves.size());
   eo.progress = progress;
-  if (streams.gcode) {
-    machines::emit_gcode(out.program, m, eo, *streams.gcode);
-  } else {
-    out.gcode = machines::emit_gcode(out.program, m, eo);
-  }
+  out.gcode = machines::emit_gcode(out.program, m, eo);
   if (viewer_e) {
     eo.viewer_e = true;
     eo.progress = nullptr;
-    if (streams.viewer_gcode) {
-      machines::emit_gcode(out.program, m, eo, *streams.viewer_gcode);
-    } else {
-      out.viewer_gcode = machines::emit_gcode(out.program, m, eo);
-    }
+    out.viewer_gcode = machines::emit_gcode(out.program, m, eo);
   }
   return out;
 }

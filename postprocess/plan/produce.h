@@ -25,22 +25,20 @@ struct Produced {
   slicer::MotionProgram program;
 };
 
-// Where the G-code goes instead of Produced's strings: written in blocks as it is formatted,
-// so a large job never holds its whole file in memory.
+// Where produce_layers writes the G-code bodies instead of Produced's strings: in blocks as
+// they are formatted, so a large job never holds its whole file in memory.
 struct GcodeStreams {
   std::ostream* gcode = nullptr;
   std::ostream* viewer_gcode = nullptr;  // used with viewer_e
 };
 
-// `gcode_path` is only recorded in the report. Throws InputError if the part does not fit.
-// With `viewer_e`, also writes the preview-only variant (machines::EmitOptions::viewer_e).
-// `progress` (may be null) is told the phases: planning, writing G-code.
-// The toolpath is taken by value and released layer by layer as it is planned (pass it with
-// std::move so a large job does not hold toolpath and program at once).
+// produce_layers for a toolpath already whole, in memory, the program kept: `gcode_path` is
+// only recorded in the report; throws InputError if the part does not fit. With `viewer_e`,
+// also the preview-only variant (machines::EmitOptions::viewer_e). The toolpath is taken by
+// value and each layer released as it is planned (pass it with std::move).
 Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,
                  const PlanOptions& options, const std::string& gcode_path,
-                 bool viewer_e = false, const GcodeStreams& streams = {},
-                 slicer::Progress* progress = nullptr);
+                 bool viewer_e = false, slicer::Progress* progress = nullptr);
 // Options of produce_layers.
 struct ProduceOptions {
   std::string gcode_path;  // only recorded in the report
@@ -55,16 +53,18 @@ struct ProduceOptions {
 
 // The job one layer at a time: each layer from the source is planned, estimated and written
 // before the next is made, so memory does not grow with the job (only per-layer sums, the
-// report and the header lines do). The bytes are those of produce() on the whole toolpath.
+// report and the header lines do). The bytes are those of produce_program() on the whole
+// planned program.
 // Throws InputError if the part does not fit (the streams then hold a partial body: write
 // them to temp files that are dropped, slicer::OutputFiles).
 Produced produce_layers(slicer::LayerSource& source, const machines::MachineProfile& m,
                         const PlanOptions& options, const ProduceOptions& produce_options);
 
-// The same from an already planned program (conformal printing plans through a surface).
+// The same from an already planned whole program (conformal printing plans through a
+// surface), in memory.
 Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram program,
                          const machines::MachineProfile& m, const PlanOptions& options,
                          const std::string& gcode_path, bool viewer_e = false,
-                         const GcodeStreams& streams = {}, slicer::Progress* progress = nullptr);
+                         slicer::Progress* progress = nullptr);
 
 }  // namespace strand::post

@@ -1,6 +1,6 @@
-// The layer-by-layer job (produce_layers) writes the bytes of the whole-toolpath one
-// (produce): every generator's sample on every flat DIW profile, the preview copy included,
-// kept in memory or streamed with its head given last.
+// The layer-by-layer job (produce_layers) writes the bytes of the whole program planned at
+// once (plan + produce_program): every generator's sample on every flat DIW profile, the
+// preview copy included, kept in memory or streamed with its head given last.
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -39,7 +39,7 @@ TEST(ProduceLayers, TheSameBytesAsTheWholeToolpathForEveryGeneratorAndPrinter) {
       const PlanOptions o = plan_options_from(whole, 0.01);
       Produced expected;
       try {
-        expected = produce(whole, m, o, "x.gcode", true);
+        expected = produce_program(whole, plan(whole, m, o), m, o, "x.gcode", true);
       } catch (const InputError& e) {
         // A part too big for this bed is refused the same way, layer by layer.
         auto source = g.layers(values);
