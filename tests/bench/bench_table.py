@@ -159,7 +159,7 @@ def main():
                              speed_target=False)
         if not a.quick:
             big_rss = scaffold(t, strand, work, "scaffold 3.3M moves", tall, ["--layers", "4550"], True)
-            # Issue 23: memory independent of job size (needs the layer-by-layer pipeline).
+            # Issue 23: memory independent of job size (the layer-by-layer pipeline).
             t.add("scaffold 3.3M vs 132k", "peak memory ratio", round(big_rss / small_rss, 2), "x", "<= 1.5",
                   big_rss <= 1.5 * small_rss)
         long_rows = os.path.join(work, "long-rows.gcode")
