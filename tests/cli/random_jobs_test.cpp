@@ -1,6 +1,7 @@
 // Every file a generator writes passes `strand check` against its machine: 500 seeded random
 // valid jobs per generator, each planned and emitted for every printer profile, parsed back
-// and checked (crossings, bounds, arcs, numbers). Random sets start from the sample job and
+// and checked (crossings, bounds, arcs, numbers); every fifth is also planned whole and must
+// give the same bytes as the layer-by-layer pipeline. Random sets start from the sample job and
 // scale its numbers; sets the generator refuses (InputError) are drawn again.
 #include <gtest/gtest.h>
 
@@ -69,10 +70,16 @@ TEST_P(RandomJobs, EveryWrittenFilePassesCheckOnEveryPrinter) {
     ++valid;
     for (const auto& m : machines) {
       post::Produced out;
+      const post::PlanOptions options = post::plan_options_from(t, slicer::kDefaultArcToleranceMm);
       try {
-        out = post::produce(t, m, post::plan_options_from(t, slicer::kDefaultArcToleranceMm), "x.gcode");
+        out = post::produce(t, m, options, "x.gcode");
       } catch (const InputError&) {
         continue;  // does not fit this machine: refused, nothing written
+      }
+      if (valid % 5 == 0) {
+        const post::Produced whole = post::produce_program(t, post::plan(t, m, options), m, options, "x.gcode");
+        ASSERT_EQ(out.gcode, whole.gcode) << spec.name << " on " << m.name << " with " << params.dump()
+                                          << ": layer by layer differs from the whole program";
       }
       post::CheckOptions o;
       o.machine = &m;
