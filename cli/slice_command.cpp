@@ -91,7 +91,7 @@ int run_slice(SliceArgs a) {
     const std::string& input = a.settings.part.empty() ? a.settings.onto : a.settings.part;
     a.settings.output = input.empty() ? "slice.gcode" : output_from_input(input, ".gcode");
   }
-  const auto progress = command_progress("slice", 7 + a.previews.size());
+  const auto progress = command_progress("slice", 6 + a.previews.size());
   a.settings.progress = progress.get();
   a.settings.on_part_size = [&progress](const slicer::Vec3& size) {
     char line[160];

@@ -281,21 +281,25 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   fill.half_extent_mm = half;
   fill.volume_mm3 = slicer::signed_volume_mm3(r.part.mesh);
   fill.perimeters = s.perimeters;
-  fill.progress = s.progress;
-  slicer::progress_phase(s.progress, "filling layers", fill.layers.size());
-  r.toolpath = patterns::fill_part(fill, pattern);
-  r.toolpath.parameters = slice_parameters(s, pattern);
-  r.toolpath.derived["size_mm"] = {size.x(), size.y(), size.z()};
-  if (r.scale != 1.0) r.toolpath.derived["scale"] = r.scale;
-  r.toolpath.derived["mesh_triangles"] = r.part.mesh.triangles.size();
-  r.toolpath.derived["mesh_repairs"] = r.part.changes;
-  r.toolpath.derived["mesh_notes"] = r.notes;
-  r.toolpath.derived["skipped_regions"] = skipped;
-  // Layer by layer like every job (postprocess/plan/produce.h), the file kept in memory: the
-  // slice previews and checks read the finished text.
-  r.produced = post::produce(r.toolpath, machine,
-                             post::plan_options_from(r.toolpath, s.arc_tolerance_mm), s.output,
-                             s.viewer_e, s.progress);
+  // Each layer is filled, planned and written before the next (postprocess/plan/produce.h);
+  // the file is kept in memory: the slice previews and checks read the finished text.
+  const std::unique_ptr<slicer::LayerSource> filled = patterns::part_fill_layers(std::move(fill), pattern);
+  slicer::Toolpath& record = filled->record;
+  record.parameters = slice_parameters(s, pattern);
+  record.derived["size_mm"] = {size.x(), size.y(), size.z()};
+  if (r.scale != 1.0) record.derived["scale"] = r.scale;
+  record.derived["mesh_triangles"] = r.part.mesh.triangles.size();
+  record.derived["mesh_repairs"] = r.part.changes;
+  record.derived["mesh_notes"] = r.notes;
+  record.derived["skipped_regions"] = skipped;
+  post::ProduceOptions po;
+  po.gcode_path = s.output;
+  po.viewer_e = s.viewer_e;
+  po.progress = s.progress;
+  po.phase = "filling layers, planning and writing G-code";
+  po.keep_program = s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm;  // vet_produced reads it
+  r.produced = post::produce_layers(*filled, machine, post::plan_options_from(record, s.arc_tolerance_mm), po);
+  r.toolpath = std::move(record);  // the layers went as they were written
   return r;
 }
 

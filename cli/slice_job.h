@@ -46,7 +46,8 @@ struct SliceSettings {
 
 struct SliceResult {
   post::Produced produced;
-  slicer::Toolpath toolpath;
+  slicer::Toolpath toolpath;        // generator, parameters, derived; a sliced part's layers are
+                                   // not kept (written as they were filled), a draped one's are
   slicer::PreparedMesh part;       // the mesh as sliced (placed), with its repairs; with `onto`,
                                    // the placed substrate
   double scale = 1.0;              // the uniform scale applied (after units)

@@ -83,7 +83,10 @@ class Writer {
       begun_ = true;
       for (const auto& line : m_.start_gcode) out_ += expand(line, m_) + "\n";
       preamble();
+    }
+    if (!at_set_ && !p.moves.empty()) {  // layers before the first move may be empty
       at_ = p.start_mm;
+      at_set_ = true;
     }
     for (const auto& mv : p.moves) {
       write(mv, p);
@@ -411,6 +414,7 @@ class Writer {
   std::string feed_;
   slicer::Vec3 at_ = slicer::Vec3::Zero();
   bool begun_ = false;
+  bool at_set_ = false;
   std::size_t written_ = 0;
 };
 

@@ -42,7 +42,7 @@ class GcodeBodyWriter {
   GcodeBodyWriter(const MachineProfile& machine, const EmitOptions& options, std::ostream& out);
   ~GcodeBodyWriter();
   // The next piece (its moves index the layers it lists); the first also writes the start
-  // G-code and preamble and takes its start_mm.
+  // G-code and preamble; the first with moves gives the start position (start_mm).
   void add(const slicer::MotionProgram& piece);
   // The end G-code; flushes.
   void finish();

@@ -109,45 +109,73 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   return out;
 }
 
-slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p) {
-  slicer::Toolpath t;
-  t.generator = "slice";
-  nlohmann::json regions = nlohmann::json::array(), strands = nlohmann::json::array();
-  double deposited = 0.0, pattern_length = 0.0, region_area = 0.0;
-  Vec2 at = Vec2::Zero();
-  for (std::size_t k = 0; k < part.layers.size(); ++k) {
-    const double z = (static_cast<double>(k) + 1.0) * p.layer_height_mm;
-    check_wall(part.layers, k, p.nozzle_mm, z);
-    LayerFill f =
-        fill_layer(part.layers[k], p, static_cast<int>(k), part.perimeters, part.half_extent_mm);
-    slicer::Layer layer{z, p.layer_height_mm, ordered(std::move(f.strokes), at)};
-    if (!layer.strokes.empty()) at = layer.strokes.back().end_mm();
-    for (const auto& s : layer.strokes) deposited += slicer::stroke_length(s);
-    pattern_length += f.pattern_length_mm;
-    region_area += slicer::area_mm2(part.layers[k]);
-    regions.push_back(f.regions);
-    strands.push_back(f.pattern_strands);
-    t.layers.push_back(std::move(layer));
-    slicer::progress_step(part.progress, k + 1);
+namespace {
+
+// Layer k filled when asked for, ordered from where layer k - 1 ended; the sums for the
+// derived sizes accumulate as layers pass and complete the record with the last one.
+class PartFillLayers final : public slicer::LayerSource {
+ public:
+  PartFillLayers(PartFill part, RegionPattern p) : part_(std::move(part)), p_(std::move(p)) {
+    record.generator = "slice";
+    if (part_.layers.empty()) finish();
   }
-  const double area = slicer::bead_area_mm2(p.nozzle_mm, p.layer_height_mm);
-  const double sliced_volume = region_area * p.layer_height_mm;
-  t.derived = {
-      {"pattern", p.name},
-      {"layers", part.layers.size()},
-      {"layer_height_mm", p.layer_height_mm},
-      {"regions_per_layer", regions},
-      {"pattern_strands_per_layer", strands},
-      {"part_volume_mm3", part.volume_mm3},
-      {"porosity", part.volume_mm3 > 0 ? 1.0 - deposited * area / part.volume_mm3 : 0.0},
-      {"porosity_formula", "1 - (deposited length * bead area) / part volume"},
-      {"pattern_porosity", p.porosity},
-      {"pattern_porosity_in_part",
-       sliced_volume > 0 ? 1.0 - pattern_length * area / sliced_volume : 0.0},
-      {"bead_area_mm2", area},
-  };
-  if (p.pitch_mm > 0) t.derived["pitch_mm"] = p.pitch_mm;
-  return t;
+
+  std::size_t layer_count() const override { return part_.layers.size(); }
+
+  slicer::Layer layer(std::size_t k) override {
+    const double z = (static_cast<double>(k) + 1.0) * p_.layer_height_mm;
+    check_wall(part_.layers, k, p_.nozzle_mm, z);
+    LayerFill f = fill_layer(part_.layers[k], p_, static_cast<int>(k), part_.perimeters, part_.half_extent_mm);
+    slicer::Layer layer{z, p_.layer_height_mm, ordered(std::move(f.strokes), at_)};
+    if (!layer.strokes.empty()) at_ = layer.strokes.back().end_mm();
+    for (const auto& s : layer.strokes) deposited_ += slicer::stroke_length(s);
+    pattern_length_ += f.pattern_length_mm;
+    region_area_ += slicer::area_mm2(part_.layers[k]);
+    regions_.push_back(f.regions);
+    strands_.push_back(f.pattern_strands);
+    slicer::progress_step(part_.progress, k + 1);
+    if (k + 1 == part_.layers.size()) finish();
+    return layer;
+  }
+
+ private:
+  void finish() {
+    const double area = slicer::bead_area_mm2(p_.nozzle_mm, p_.layer_height_mm);
+    const double sliced_volume = region_area_ * p_.layer_height_mm;
+    const nlohmann::json derived = {
+        {"pattern", p_.name},
+        {"layers", part_.layers.size()},
+        {"layer_height_mm", p_.layer_height_mm},
+        {"regions_per_layer", regions_},
+        {"pattern_strands_per_layer", strands_},
+        {"part_volume_mm3", part_.volume_mm3},
+        {"porosity", part_.volume_mm3 > 0 ? 1.0 - deposited_ * area / part_.volume_mm3 : 0.0},
+        {"porosity_formula", "1 - (deposited length * bead area) / part volume"},
+        {"pattern_porosity", p_.porosity},
+        {"pattern_porosity_in_part",
+         sliced_volume > 0 ? 1.0 - pattern_length_ * area / sliced_volume : 0.0},
+        {"bead_area_mm2", area},
+    };
+    if (!record.derived.is_object()) record.derived = nlohmann::json::object();
+    record.derived.update(derived);
+    if (p_.pitch_mm > 0) record.derived["pitch_mm"] = p_.pitch_mm;
+  }
+
+  PartFill part_;
+  RegionPattern p_;
+  Vec2 at_ = Vec2::Zero();
+  double deposited_ = 0.0, pattern_length_ = 0.0, region_area_ = 0.0;
+  nlohmann::json regions_ = nlohmann::json::array(), strands_ = nlohmann::json::array();
+};
+
+}  // namespace
+
+std::unique_ptr<slicer::LayerSource> part_fill_layers(PartFill part, RegionPattern p) {
+  return std::make_unique<PartFillLayers>(std::move(part), std::move(p));
+}
+
+slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p) {
+  return slicer::collect(*part_fill_layers(part, p));
 }
 
 }  // namespace strand::patterns

@@ -3,11 +3,13 @@
 // region allows; the layers together make the part's Toolpath.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "patterns/region_pattern.h"
 #include "slicer/progress.h"
+#include "slicer/layer_source.h"
 #include "slicer/region.h"
 #include "slicer/toolpath.h"
 
@@ -40,5 +42,8 @@ struct PartFill {
 // that no bead reaches, where the layers below and above also cover it (so the thin rim
 // at the top or bottom of a curved part is not a wall), naming where.
 slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p);
+// The same one layer at a time: the record names the generator at once; its derived sizes
+// (keys already there are kept) are complete once the last layer has been made.
+std::unique_ptr<slicer::LayerSource> part_fill_layers(PartFill part, RegionPattern p);
 
 }  // namespace strand::patterns

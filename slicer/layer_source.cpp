@@ -4,10 +4,12 @@
 namespace strand::slicer {
 
 Toolpath collect(LayerSource& source) {
-  Toolpath t = source.record;
+  std::vector<Layer> layers;
   const std::size_t n = source.layer_count();
-  t.layers.reserve(n);
-  for (std::size_t k = 0; k < n; ++k) t.layers.push_back(source.layer(k));
+  layers.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) layers.push_back(source.layer(k));
+  Toolpath t = source.record;  // after the layers: a source may complete it with the last
+  t.layers = std::move(layers);
   return t;
 }
 

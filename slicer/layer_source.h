@@ -18,8 +18,9 @@ class LayerSource {
   // Layer `index`; called once per index, in order 0, 1, ..., layer_count() - 1.
   virtual Layer layer(std::size_t index) = 0;
 
-  // Known before the first layer: generator, parameters and derived sizes (its `layers`
-  // stays empty).
+  // Generator and parameters, known before the first layer (planning reads them), and the
+  // derived sizes, known before the first layer or at the latest once the last has been
+  // made (a sliced part's porosity sums every layer). Its `layers` stays empty.
   Toolpath record;
 };
 

@@ -27,8 +27,10 @@ struct EstimateStream::Impl {
   }
 
   void add(const slicer::MotionProgram& p) {
-    if (!started) at = p.start_mm;
-    started = true;
+    if (!started && !p.moves.empty()) {  // layers before the first move may be empty
+      at = p.start_mm;
+      started = true;
+    }
     for (std::size_t i = e.layers.size(); i < p.layers.size(); ++i) {
       e.layers.push_back({static_cast<int>(i), p.layers[i].z_mm});
     }

@@ -82,8 +82,10 @@ struct TrapezoidTimer::Impl {
   explicit Impl(const TimeOptions& options) : o(options), planner(options.acceleration_mm_per_s2, t) {}
 
   void add(const slicer::MotionProgram& p) {
-    if (!started) at = p.start_mm;
-    started = true;
+    if (!started && !p.moves.empty()) {  // layers before the first move may be empty
+      at = p.start_mm;
+      started = true;
+    }
     if (t.layer_s.size() < p.layers.size()) t.layer_s.resize(p.layers.size(), 0.0);
     add_dwells(p);
     for (const auto& mv : p.moves) add_move(mv);

@@ -32,7 +32,7 @@ struct MotionTime {
 MotionTime trapezoid_time(const slicer::MotionProgram& p, const TimeOptions& o);
 
 // The same for a program that passes in pieces (one layer at a time, planner.h's
-// LayerPlanner): add() each piece in order (its start_mm is used for the first only; its
+// LayerPlanner): add() each piece in order (start_mm is read from the first with moves; its
 // layers list every layer so far), then finish() once. Memory is bounded by the distance
 // between the planner's cuts, not by the program.
 class TrapezoidTimer {

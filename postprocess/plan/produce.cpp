@@ -16,7 +16,7 @@ namespace {
 
 // Appends a planned piece (LayerPlanner's) to the whole program it is part of.
 void append(slicer::MotionProgram& whole, const slicer::MotionProgram& piece) {
-  if (whole.layers.empty() && whole.moves.empty()) whole.start_mm = piece.start_mm;
+  if (whole.moves.empty()) whole.start_mm = piece.start_mm;
   for (std::size_t i = whole.layers.size(); i < piece.layers.size(); ++i) whole.layers.push_back(piece.layers[i]);
   for (slicer::Move mv : piece.moves) {
     if (mv.kind == slicer::MoveKind::Raw) {
@@ -81,7 +81,7 @@ Produced produce_layers(slicer::LayerSource& source, const machines::MachineProf
                         const PlanOptions& options, const ProduceOptions& po) {
   const slicer::Toolpath& record = source.record;
   const std::size_t layers = source.layer_count();
-  slicer::progress_phase(po.progress, "planning and writing G-code", layers);
+  slicer::progress_phase(po.progress, po.phase, layers);
   LayerPlanner planner(m, options);
   EstimateStream estimate(&m);
   machines::EmitOptions eo;

@@ -47,7 +47,8 @@ struct ProduceOptions {
   // get each file's body (all but its head, which needs the totals) as it is formatted and
   // Produced::gcode_head / viewer_gcode_head the head that goes before it.
   GcodeStreams streams;
-  slicer::Progress* progress = nullptr;  // told "planning and writing G-code", a step per layer
+  slicer::Progress* progress = nullptr;  // told `phase`, a step per layer
+  std::string phase = "planning and writing G-code";
   bool keep_program = false;              // also return the whole MotionProgram
 };
 

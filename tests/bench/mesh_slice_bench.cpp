@@ -27,7 +27,7 @@ void BM_SliceTorus100kInto200Layers(benchmark::State& state) {
   std::size_t layers = 0, bytes = 0;
   for (auto _ : state) {
     const cli::SliceResult r = cli::produce_slice(s);
-    layers = r.toolpath.layers.size();
+    layers = r.toolpath.derived.at("layers").get<std::size_t>();
     bytes = r.produced.gcode.size();
     benchmark::DoNotOptimize(r.produced.gcode.data());
   }

@@ -112,7 +112,7 @@ TEST(ProgressCli, EveryLongCommandReportsItsPhases) {
       {"trace '" + src + "/samples/plot/photo.png' -o t.svg", "trace: 2/3 tracing ("},
       {"slice '" + src + "/tests/data/box-20x20x3.stl' --nozzle 0.6 --gap 1 "
        "--machine marlin-xyz-200 -o b.gcode",
-       "slice: 4/7 filling layers ("},
+       "slice: 4/6 filling layers, planning and writing G-code ("},
   };
   for (const auto& c : cases) {
     const auto quiet = run_strand(c.args, dir);
