@@ -7,7 +7,6 @@
 #include "postprocess/plan/arc_segmentation.h"
 #include "postprocess/plan/placement.h"
 #include "postprocess/plan/valve_lag.h"
-#include "slicer/memory.h"
 #include "slicer/units.h"
 #include "slicer/tolerances.h"
 
@@ -21,27 +20,17 @@ using slicer::Vec3;
 
 namespace {
 
-// Freed toolpath layers go back to the OS every this many layers (slicer/memory.h).
-constexpr std::size_t kTrimEveryLayers = 64;
-
 class Planner {
  public:
   Planner(const machines::MachineProfile& m, const PlanOptions& o, slicer::MotionProgram& out)
       : m_(m), o_(o), p_(out), offset_(m.volume.part_center_mm) {}
 
-  // With `release` (the same layers as t's), each layer's strokes are freed once planned.
-  void run(const slicer::Toolpath& t, std::vector<slicer::Layer>* release) {
+  void run(const slicer::Toolpath& t) {
     std::size_t bound = 1;  // the approach above the first point
     for (const auto& layer : t.layers) bound += move_bound(layer);
     p_.moves.reserve(bound);
     p_.layers.reserve(t.layers.size());
-    for (std::size_t li = 0; li < t.layers.size(); ++li) {
-      add_layer(t.layers[li]);
-      if (release) {
-        std::vector<slicer::Stroke>().swap((*release)[li].strokes);
-        if (li % kTrimEveryLayers == kTrimEveryLayers - 1) slicer::release_free_memory();
-      }
-    }
+    for (const auto& layer : t.layers) add_layer(layer);
   }
 
   // The next layer's moves, appended to the program.
@@ -214,27 +203,23 @@ PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm
 
 namespace {
 
-slicer::MotionProgram plan_layers(const slicer::Toolpath& t, const machines::MachineProfile& machine,
-                                  const PlanOptions& options, std::vector<slicer::Layer>* release) {
-  slicer::MotionProgram p;
-  Planner(machine, options, p).run(t, release);
+// What the machine asks of planned moves: the valve closed its lag early, every move inside
+// the build volume (InputError otherwise).
+void finish_for_machine(slicer::MotionProgram& p, const machines::MachineProfile& machine) {
   if (machine.deposition.model == machines::DepositionModel::Valve && machine.deposition.lag_s > 0) {
     apply_valve_lag(p, machine.deposition.lag_s);
   }
   check_fits(p, machine);
-  return p;
 }
 
 }  // namespace
 
 slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachineProfile& machine,
                            const PlanOptions& options) {
-  return plan_layers(t, machine, options, nullptr);
-}
-
-slicer::MotionProgram plan_and_release(slicer::Toolpath& t, const machines::MachineProfile& machine,
-                                       const PlanOptions& options) {
-  return plan_layers(t, machine, options, &t.layers);
+  slicer::MotionProgram p;
+  Planner(machine, options, p).run(t);
+  finish_for_machine(p, machine);
+  return p;
 }
 
 struct LayerPlanner::State {
@@ -260,11 +245,7 @@ const slicer::MotionProgram& LayerPlanner::plan(const slicer::Layer& layer) {
   p.moves.reserve(s_->planner.move_bound(layer));
   s_->planner.add_layer(layer);
   if (!first) p.start_mm = before;  // the first layer's start is its approach point
-  const auto& m = s_->machine;
-  if (m.deposition.model == machines::DepositionModel::Valve && m.deposition.lag_s > 0) {
-    apply_valve_lag(p, m.deposition.lag_s);
-  }
-  check_fits(p, m);
+  finish_for_machine(p, s_->machine);  // per layer: a strand never spans two
   return p;
 }
 

@@ -31,11 +31,6 @@ PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm
 // (throws InputError otherwise).
 slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachineProfile& machine,
                            const PlanOptions& options);
-// The same, freeing each layer's strokes once planned (layers keep z and height, metadata
-// stays): a large job never holds its whole toolpath and its whole program at once.
-slicer::MotionProgram plan_and_release(slicer::Toolpath& t, const machines::MachineProfile& machine,
-                                       const PlanOptions& options);
-
 // The same one layer at a time, for a toolpath that is never whole (slicer/layer_source.h):
 // what crosses layers (the nozzle's position, the approach before the first layer) is kept,
 // each layer's moves replace the last one's. The moves of plan() for the whole toolpath are
