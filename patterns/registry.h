@@ -12,8 +12,9 @@
 
 namespace strand::patterns {
 
-// Most segments (plus strokes) one generated specimen may have: about 4 million moves, a few
-// hundred MB through planning and emission; larger stacks are refused before they are built.
+// Most segments (plus strokes) one generated specimen may have: about 4 million moves, a G-code
+// file of some 100 MB and seconds of work (memory no longer grows with it: jobs run layer by
+// layer); larger stacks are refused before they are built.
 inline constexpr std::size_t kMaxToolpathSegments = 4'000'000;
 
 struct GeneratorSpec {
