@@ -112,3 +112,30 @@ TEST(OutputsCli, TheDefaultNeverOverwritesTheInput) {
 
 }  // namespace
 }  // namespace strand::testing
+
+namespace strand::testing {
+namespace {
+
+// Jobs are written layer by layer into a temp file: a part that leaves the build volume at
+// layer 546 fails after hundreds of layers were formatted, and still leaves no output, no
+// temp file, and an earlier file of that name as it was.
+TEST(OutputsCli, APartFailingHalfWayLeavesNoFileAndTheOldOneUntouched) {
+  const auto dir = fresh_dir("out-fails-late");
+  {
+    std::ofstream old(dir + "/s.gcode");
+    old << "old file\n";
+  }
+  const auto r = run_strand("scaffold --nozzle 0.84 --gap 1.6 --size 20x20 --layers 600 --machine "
+                            "marlin-xyz-200 -o s.gcode --report s.json --viewer-e",
+                            dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("part does not fit machine marlin-xyz-200: z 200.323 mm > 200 mm"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  std::vector<std::string> files;
+  for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path().filename().string());
+  EXPECT_EQ(files, std::vector<std::string>{"s.gcode"}) << "no report, viewer copy or temp file";
+  EXPECT_EQ(slurp(dir + "/s.gcode"), "old file\n");
+}
+
+}  // namespace
+}  // namespace strand::testing
