@@ -96,8 +96,9 @@ void close_temp(std::ofstream& out, const std::string& target, const std::string
 }
 
 // Writes `head` into `joined`, then the whole of `body`, copied by the kernel (a plain
-// read/write loop where copy_file_range cannot copy between these files); removes `body`.
-// On failure both are removed and InputError names `target`.
+// read/write loop where copy_file_range cannot copy between these files), and renames the
+// result to `body`'s name (the name a journal recognises as this target's temp). On failure
+// both are removed and InputError names `target`.
 void join_head(const std::string& target, const std::string& head, const std::string& body,
                const std::string& joined) {
   register_temp(joined);
@@ -134,13 +135,18 @@ void join_head(const std::string& target, const std::string& head, const std::st
   if (in >= 0) ::close(in);
   if (out >= 0 && ::close(out) != 0) ok = false;
   std::error_code ec;
-  fs::remove(body, ec);
-  forget_temp(body);
+  if (ok) {
+    fs::rename(joined, body, ec);
+    ok = !ec;
+  }
   if (!ok) {
+    fs::remove(body, ec);
+    forget_temp(body);
     fs::remove(joined, ec);
     forget_temp(joined);
     throw InputError("output = " + target + ": write failed (disk full?)");
   }
+  forget_temp(joined);
 }
 
 void write_temp(const std::string& target, const std::string& temp, const std::string& content) {
@@ -317,9 +323,7 @@ void OutputFiles::commit() {
     try {
       close_temp(*stream, s.target, s.temp);
       if (!s.head.empty()) {
-        const std::string joined = s.target + ".strand-tmp-joined";
-        join_head(s.target, s.head, s.temp, joined);
-        s.temp = joined;
+        join_head(s.target, s.head, s.temp, s.target + ".strand-tmp-joined");
         s.head.clear();
       }
     } catch (...) {

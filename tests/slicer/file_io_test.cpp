@@ -133,10 +133,13 @@ namespace {
 // The set of five files a robot job writes, with contents tagged by run.
 const std::vector<std::string> kSet = {"p.csv", "P.java", "p.src", "p.dat", "p.extruder.gcode"};
 
+// The last file is streamed with its head given last, as G-code is.
 void write_set(const std::string& dir, const std::string& tag,
                std::function<void(std::size_t)> hook = nullptr) {
   OutputFiles out;
-  for (const auto& name : kSet) out.stage(dir + "/" + name, tag + " " + name);
+  for (std::size_t i = 0; i + 1 < kSet.size(); ++i) out.stage(dir + "/" + kSet[i], tag + " " + kSet[i]);
+  out.stage_stream(dir + "/" + kSet.back()) << kSet.back();
+  out.prepend(dir + "/" + kSet.back(), tag + " ");
   if (hook) out.on_rename(std::move(hook));
   out.commit();
 }
