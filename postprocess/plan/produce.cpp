@@ -63,9 +63,15 @@ std::vector<std::string> header(const slicer::Toolpath& t, const machines::Machi
   return h;
 }
 
-}  // namespace
-
-namespace {
+// The report and summary of a job from its estimates; returns the header's comment lines.
+std::vector<std::string> report_job(Produced& out, const slicer::Toolpath& record,
+                                    const machines::MachineProfile& m, const Estimate& e,
+                                    const PlanOptions& options, const std::string& gcode_path) {
+  out.report = make_report(record, m, e, gcode_path);
+  out.report["parameters"]["arc-tolerance"] = options.arc_tolerance_mm;
+  out.summary = summary_text(out.report);
+  return header(record, m, options, out.report);
+}
 
 // One file's body (all but its head) going to a stream or kept in memory.
 struct Body {
@@ -103,11 +109,7 @@ Produced produce_layers(slicer::LayerSource& source, const machines::MachineProf
   }
   gcode.writer.finish();
   if (viewer) viewer->writer.finish();
-  const Estimate e = estimate.finish();
-  out.report = make_report(record, m, e, po.gcode_path);
-  out.report["parameters"]["arc-tolerance"] = options.arc_tolerance_mm;
-  out.summary = summary_text(out.report);
-  eo.header = header(record, m, options, out.report);
+  eo.header = report_job(out, record, m, estimate.finish(), options, po.gcode_path);
   out.gcode_head = machines::gcode_head(m, eo);
   if (!po.streams.gcode) out.gcode = out.gcode_head + std::move(gcode.memory).str();
   if (viewer) {
@@ -135,12 +137,8 @@ Produced produce_program(const slicer::Toolpath& t, slicer::MotionProgram progra
                          const std::string& gcode_path, bool viewer_e, slicer::Progress* progress) {
   Produced out;
   out.program = std::move(program);
-  const Estimate e = estimate(out.program, m);
-  out.report = make_report(t, m, e, gcode_path);
-  out.report["parameters"]["arc-tolerance"] = options.arc_tolerance_mm;
-  out.summary = summary_text(out.report);
   machines::EmitOptions eo;
-  eo.header = header(t, m, options, out.report);
+  eo.header = report_job(out, t, m, estimate(out.program, m), options, gcode_path);
   slicer::progress_phase(progress, "writing G-code", out.program.moves.size());
   eo.progress = progress;
   out.gcode = machines::emit_gcode(out.program, m, eo);
