@@ -6,7 +6,7 @@
 #include <ostream>
 
 #include "machines/gcode_format.h"
-#include "machines/move_split.h"
+#include "machines/deposit_pieces.h"
 #include "slicer/units.h"
 
 namespace strand::machines {
@@ -14,7 +14,6 @@ namespace strand::machines {
 using slicer::Feature;
 using slicer::Move;
 using slicer::MoveKind;
-using slicer::Vec2;
 
 namespace {
 
@@ -31,15 +30,6 @@ std::string expand(const std::string& line, const MachineProfile& m) {
   s = replace_all(s, "{message}", m.deposition.message);
   return s;
 }
-
-// Chord error used only if an arc reaches the emitter of a machine without G2/G3 (the
-// planner normally segments them with the user's tolerance), mm.
-constexpr double kFallbackChordMm = 0.01;
-// XYZ and IJ are written with 3 decimals.
-constexpr double kWrittenResolutionMm = 1e-3;
-// Largest difference between the written start and end radius of a G2/G3 (firmware draws
-// the start radius and ends on the target, so this is the deviation it leaves), mm.
-constexpr double kArcRadiusMismatchMm = 2e-3;
 
 // Text is formatted into a buffer handed to the stream in blocks of about this size, bytes.
 constexpr std::size_t kFlushBytes = 1 << 16;
@@ -190,62 +180,6 @@ class Writer {
     }
   }
 
-  struct PiecePlan {
-    int n = 1;            // pieces the deposit is written as
-    bool chords = false;  // an arc written as G1 chords
-  };
-
-  // Moves this deposit is written as: arcs become chords where the firmware has no G2/G3
-  // (or would misdraw the rounded numbers), and E-driven moves are cut below
-  // EXTRUDE_MAXLENGTH.
-  PiecePlan piece_plan(const Move& mv) const {
-    int n = 1;
-    const bool chords = mv.is_arc && (!m_.arcs || !arc_writable(mv));
-    if (chords) {
-      const double r = (at_.head<2>() - mv.center_mm).norm();
-      const double sweep = std::abs(slicer::arc_sweep(mv.center_mm, at_.head<2>(), mv.end_mm.head<2>(), mv.ccw));
-      const double tol = std::min(kFallbackChordMm, r);
-      n = std::max(1, static_cast<int>(std::ceil(sweep / (2 * std::acos(1 - tol / r)))));
-    }
-    if (e_words_ && !o_.viewer_e) {
-      const double e = mv.volume_mm3 / m_.deposition.mm3_per_e;
-      n = std::max(n, static_cast<int>(std::ceil(e / m_.deposition.extrude_max_length - 1e-9)));
-    }
-    return {n, chords};
-  }
-
-  std::vector<Move> pieces(const Move& mv, int n, bool chords) const {
-    if (n == 1) {
-      Move line = mv;
-      line.is_arc = mv.is_arc && !chords;
-      return {line};
-    }
-    std::vector<double> cuts;
-    for (int i = 1; i < n; ++i) cuts.push_back(static_cast<double>(i) / n);
-    auto out = split_move(at_, mv, cuts);
-    if (chords) {
-      for (auto& piece : out) piece.is_arc = false;
-    }
-    return out;
-  }
-
-  // G2/G3 only where the firmware will draw what the rounded numbers say: ends that round to
-  // the same point make a full circle (right only for an arc of more than half a turn), and
-  // the rounded centre must lie as far from both rounded ends as the arc's radius implies.
-  bool arc_writable(const Move& mv) const {
-    const Vec2 from = at_.head<2>(), to = mv.end_mm.head<2>();
-    const Vec2 s = rounded(from), e = rounded(to), c = s + rounded(mv.center_mm - from);
-    if ((e - s).norm() < 0.5 * kWrittenResolutionMm) {
-      return std::abs(slicer::arc_sweep(mv.center_mm, from, to, mv.ccw)) > slicer::kPi;
-    }
-    return std::abs((e - c).norm() - (s - c).norm()) <= kArcRadiusMismatchMm;
-  }
-
-  static Vec2 rounded(const Vec2& v) {
-    return {std::round(v.x() / kWrittenResolutionMm) * kWrittenResolutionMm,
-            std::round(v.y() / kWrittenResolutionMm) * kWrittenResolutionMm};
-  }
-
   void travel(const Move& mv) {
     close_flow();
     out_ += "G0";
@@ -260,12 +194,12 @@ class Writer {
     } else {
       open_flow();
     }
-    const PiecePlan plan = piece_plan(whole);
+    const PiecePlan plan = piece_plan(at_, whole, m_, e_words_ && !o_.viewer_e);
     if (plan.n == 1 && !plan.chords) {
       deposit_piece(whole);
       return;
     }
-    for (const Move& mv : pieces(whole, plan.n, plan.chords)) deposit_piece(mv);
+    for (const Move& mv : deposit_pieces(at_, whole, plan)) deposit_piece(mv);
   }
 
   void deposit_piece(Move mv) {
