@@ -79,6 +79,24 @@ inline Move& push_dwell(MotionProgram& p, double seconds, const Vec3& at_mm, int
   p.moves.push_back(mv);
   return p.moves.back();
 }
+// Appends `piece`, the next part of the same program (one layer from a planner): its moves
+// with their texts and dwells, the layers it lists beyond those `whole` has, and its start if
+// `whole` has no move yet.
+inline void append_piece(MotionProgram& whole, const MotionProgram& piece) {
+  if (whole.moves.empty()) whole.start_mm = piece.start_mm;
+  for (std::size_t i = whole.layers.size(); i < piece.layers.size(); ++i) whole.layers.push_back(piece.layers[i]);
+  for (Move mv : piece.moves) {
+    if (mv.kind == MoveKind::Raw) {
+      whole.texts.push_back(piece.texts.at(mv.side_index));
+      mv.side_index = static_cast<std::uint32_t>(whole.texts.size() - 1);
+    } else if (mv.kind == MoveKind::Dwell) {
+      whole.dwells_s.push_back(piece.dwells_s.at(mv.side_index));
+      mv.side_index = static_cast<std::uint32_t>(whole.dwells_s.size() - 1);
+    }
+    whole.moves.push_back(mv);
+  }
+}
+
 // The text of a Raw move of `p`.
 inline const std::string& raw_text(const MotionProgram& p, const Move& mv) {
   return p.texts.at(mv.side_index);

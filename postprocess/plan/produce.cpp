@@ -14,22 +14,6 @@ namespace strand::post {
 
 namespace {
 
-// Appends a planned piece (LayerPlanner's) to the whole program it is part of.
-void append(slicer::MotionProgram& whole, const slicer::MotionProgram& piece) {
-  if (whole.moves.empty()) whole.start_mm = piece.start_mm;
-  for (std::size_t i = whole.layers.size(); i < piece.layers.size(); ++i) whole.layers.push_back(piece.layers[i]);
-  for (slicer::Move mv : piece.moves) {
-    if (mv.kind == slicer::MoveKind::Raw) {
-      mv.side_index = static_cast<std::uint32_t>(whole.texts.size());
-      whole.texts.push_back(slicer::raw_text(piece, mv));
-    } else if (mv.kind == slicer::MoveKind::Dwell) {
-      mv.side_index = static_cast<std::uint32_t>(whole.dwells_s.size());
-      whole.dwells_s.push_back(slicer::dwell_seconds(piece, mv));
-    }
-    whole.moves.push_back(mv);
-  }
-}
-
 std::vector<std::string> header(const slicer::Toolpath& t, const machines::MachineProfile& m,
                                 const PlanOptions& o, const nlohmann::json& report) {
   std::vector<std::string> h;
@@ -104,7 +88,7 @@ Produced produce_layers(slicer::LayerSource& source, const machines::MachineProf
     estimate.add(piece);
     gcode.writer.add(piece);
     if (viewer) viewer->writer.add(piece);
-    if (po.keep_program) append(out.program, piece);
+    if (po.keep_program) slicer::append_piece(out.program, piece);
     slicer::progress_step(po.progress, k + 1);
   }
   gcode.writer.finish();
