@@ -68,14 +68,7 @@ std::int64_t QueueStore::insert(const QueueRow& r) {
   Statement st(db_,
                "INSERT INTO queue (job, job_name, file, machine, port, baud, firmware, state)"
                " VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
-  st.bind(1, r.job);
-  st.bind(2, r.job_name);
-  st.bind(3, r.file);
-  st.bind(4, r.machine);
-  st.bind(5, r.port);
-  st.bind(6, std::int64_t{r.baud});
-  st.bind(7, r.firmware);
-  st.bind(8, r.state);
+  st.bind_all(r.job, r.job_name, r.file, r.machine, r.port, r.baud, r.firmware, r.state);
   st.step();
   return sqlite3_last_insert_rowid(db_);
 }
@@ -85,29 +78,15 @@ void QueueStore::update(const QueueRow& r) {
   Statement st(db_,
                "UPDATE queue SET job_name = ?, file = ?, machine = ?, port = ?, baud = ?, firmware = ?,"
                " state = ?, line = ?, resume_line = ?, acked = ?, total = ?, message = ? WHERE id = ?");
-  st.bind(1, r.job_name);
-  st.bind(2, r.file);
-  st.bind(3, r.machine);
-  st.bind(4, r.port);
-  st.bind(5, std::int64_t{r.baud});
-  st.bind(6, r.firmware);
-  st.bind(7, r.state);
-  st.bind(8, std::int64_t{r.line});
-  st.bind(9, std::int64_t{r.resume_line});
-  st.bind(10, r.acked);
-  st.bind(11, r.total);
-  st.bind(12, r.message);
-  st.bind(13, r.id);
+  st.bind_all(r.job_name, r.file, r.machine, r.port, r.baud, r.firmware, r.state, r.line,
+              r.resume_line, r.acked, r.total, r.message, r.id);
   st.step();
 }
 
 void QueueStore::progress(std::int64_t id, int line, int resume_line, std::int64_t acked) {
   const std::lock_guard<std::mutex> lock(mu_);
   Statement st(db_, "UPDATE queue SET line = ?, resume_line = ?, acked = ? WHERE id = ?");
-  st.bind(1, std::int64_t{line});
-  st.bind(2, std::int64_t{resume_line});
-  st.bind(3, acked);
-  st.bind(4, id);
+  st.bind_all(line, resume_line, acked, id);
   st.step();
 }
 
@@ -124,17 +103,14 @@ void QueueStore::prune_finished(int keep) {
   Statement st(db_,
                "DELETE FROM queue WHERE id IN (SELECT id FROM queue WHERE state IN ('done', 'cancelled')"
                " ORDER BY id DESC LIMIT -1 OFFSET ?)");
-  st.bind(1, std::int64_t{keep});
+  st.bind_all(keep);
   st.step();
 }
 
 void QueueStore::save_machine(const MachinePort& m) {
   const std::lock_guard<std::mutex> lock(mu_);
   Statement st(db_, "INSERT OR REPLACE INTO queue_machines (name, port, baud, firmware) VALUES (?, ?, ?, ?)");
-  st.bind(1, m.name);
-  st.bind(2, m.port);
-  st.bind(3, std::int64_t{m.baud});
-  st.bind(4, m.firmware);
+  st.bind_all(m.name, m.port, m.baud, m.firmware);
   st.step();
 }
 

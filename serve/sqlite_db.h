@@ -22,6 +22,13 @@ struct Statement {
   Statement& operator=(const Statement&) = delete;
   void bind(int i, const std::string& v) { sqlite3_bind_text(s, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
   void bind(int i, std::int64_t v) { sqlite3_bind_int64(s, i, v); }
+  void bind(int i, int v) { sqlite3_bind_int64(s, i, v); }
+  // Binds `values` to the parameters 1, 2, ... in order.
+  template <class... Values>
+  void bind_all(const Values&... values) {
+    int i = 0;
+    (bind(++i, values), ...);
+  }
   bool step() {
     const int rc = sqlite3_step(s);
     if (rc == SQLITE_ROW) return true;

@@ -47,9 +47,7 @@ Store::~Store() { sqlite3_close(db_); }
 std::int64_t Store::insert(bool saved, const std::string& name, const std::string& job) {
   const std::lock_guard<std::mutex> lock(mu_);
   Statement st(db_, "INSERT INTO jobs (name, saved, job) VALUES (?, ?, ?)");
-  st.bind(1, name);
-  st.bind(2, std::int64_t{saved ? 1 : 0});
-  st.bind(3, job);
+  st.bind_all(name, saved ? 1 : 0, job);
   st.step();
   return sqlite3_last_insert_rowid(db_);
 }
@@ -57,16 +55,14 @@ std::int64_t Store::insert(bool saved, const std::string& name, const std::strin
 void Store::finish(std::int64_t id, const std::string& status, const std::string& result) {
   const std::lock_guard<std::mutex> lock(mu_);
   Statement st(db_, "UPDATE jobs SET status = ?, result = ? WHERE id = ?");
-  st.bind(1, status);
-  st.bind(2, result);
-  st.bind(3, id);
+  st.bind_all(status, result, id);
   st.step();
 }
 
 std::optional<JobRow> Store::get(std::int64_t id) {
   const std::lock_guard<std::mutex> lock(mu_);
   Statement st(db_, (std::string(kColumns) + "WHERE id = ?").c_str());
-  st.bind(1, id);
+  st.bind_all(id);
   if (!st.step()) return std::nullopt;
   return row_of(st);
 }
@@ -82,7 +78,7 @@ std::vector<JobRow> Store::saved_jobs() {
 bool Store::remove(std::int64_t id) {
   const std::lock_guard<std::mutex> lock(mu_);
   Statement st(db_, "DELETE FROM jobs WHERE id = ?");
-  st.bind(1, id);
+  st.bind_all(id);
   st.step();
   return sqlite3_changes(db_) > 0;
 }
@@ -90,7 +86,7 @@ bool Store::remove(std::int64_t id) {
 std::vector<std::int64_t> Store::stale_unsaved(int keep) {
   const std::lock_guard<std::mutex> lock(mu_);
   Statement st(db_, "SELECT id FROM jobs WHERE saved = 0 AND status != 'running' ORDER BY id DESC LIMIT -1 OFFSET ?");
-  st.bind(1, std::int64_t{keep});
+  st.bind_all(keep);
   std::vector<std::int64_t> ids;
   while (st.step()) ids.push_back(sqlite3_column_int64(st.s, 0));
   return ids;
