@@ -6,7 +6,8 @@ DEBIAN_PACKAGES := cmake make g++ pkg-config libeigen3-dev nlohmann-json3-dev li
                    libcairo2-dev libtinygltf-dev python3 libhersheyfont-dev hershey-fonts-data \
                    libfreetype-dev libfontconfig-dev fonts-dejavu-core libpotrace-dev libstb-dev \
                    libnetpbm-dev libcgal-dev libopenmesh-dev lib3mf-dev libzip-dev \
-                   libcpp-httplib-dev libsqlite3-dev
+                   libcpp-httplib-dev libsqlite3-dev pybind11-dev python3-dev python3-pybind11 \
+                   python3-numpy libopencv-dev
 MAKEFLAGS += --no-print-directory
 BUILD_DIR := build
 STRAND := $(BUILD_DIR)/cli/strand
@@ -20,7 +21,7 @@ SAN_DIR := build-asan
 SAN_FLAGS := -O1 -gline-tables-only -DNDEBUG
 FUZZ_SECONDS ?= 600
 
-.PHONY: all deps configure build build-strand install run test bench bench-micro clean sanitize fuzz fuzz-ci sanitize-build
+.PHONY: all deps configure build build-strand build-tests python install run test bench bench-micro clean sanitize fuzz fuzz-ci sanitize-build
 
 all: build
 
@@ -50,22 +51,38 @@ build: configure
 build-strand: configure
 	@cmake --build $(BUILD_DIR) -j$$(nproc) --target strand
 
+# The Python module alone: build/python/strand (PYTHONPATH=build/python; docs/python.md).
+python: configure
+	@cmake --build $(BUILD_DIR) -j$$(nproc) --target strand_python
+
 run: build-strand
 	@./samples/run_demo.sh $(STRAND) out
 	@echo "the workbench (design, preview, gallery in a browser): $(STRAND) serve, then open http://127.0.0.1:8080/"
 
 # bin/strand, share/strand/machines, share/man/man1 (strand.1 and one page per command),
-# bash and zsh completion, share/doc/strand. `make install PREFIX=~/.local` needs no root.
+# bash and zsh completion, share/doc/strand, and the Python module in
+# lib/python3.X/dist-packages/strand. `make install PREFIX=~/.local` needs no root.
 PREFIX ?= /usr/local
 install: build-strand
+	@if [ -d $(BUILD_DIR)/python ]; then cmake --build $(BUILD_DIR) -j$$(nproc) --target strand_python; fi
 	@cmake --install $(BUILD_DIR) --prefix "$(PREFIX)"
 
 # Test-only tools: javac/java compile and run the generated Sunrise programs against stand-in
 # classes (tests/machines/sunrise_writer_test.cpp); Chromium loads the HTML previews headless;
-# groff checks the manual pages.
-TEST_PACKAGES := openjdk-17-jdk-headless chromium chromium-driver python3-selenium groff-base curl
+# groff checks the manual pages; pytest, nbconvert (with the kernel, matplotlib and pandas the
+# notebooks use) run the Python module's tests and examples/*.ipynb.
+TEST_PACKAGES := openjdk-17-jdk-headless chromium chromium-driver python3-selenium groff-base curl \
+                 python3-pytest jupyter-nbconvert python3-ipykernel python3-matplotlib python3-pandas
+# A single-node Slurm started by tests/jobs/slurm_cluster_test.cpp (strand sweep --slurm).
+TEST_PACKAGES += slurm-wlm munge
 
-test: build
+# What the tests run (the program, the test executable, the Python module); the benchmarks are
+# left to `make bench`.
+build-tests: configure
+	@cmake --build $(BUILD_DIR) -j$$(nproc) --target strand strand_tests \
+	  $$(test -d $(BUILD_DIR)/python && echo strand_python)
+
+test: build-tests
 	@$(MAKE) deps DEBIAN_PACKAGES="$(TEST_PACKAGES)"
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$$(nproc)
 
@@ -83,13 +100,13 @@ sanitize-build: deps
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$(SAN_FLAGS)" -DSTRAND_SANITIZE=ON -DSTRAND_FUZZ=ON >/dev/null
 	@cmake --build $(SAN_DIR) -j$$(nproc)
 
-# Every test under AddressSanitizer + UndefinedBehaviorSanitizer (any report fails the test).
+# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (any report fails it), one
+# process per core (tests/sanitize_run.sh), but for the cases tests/sanitize_skip.txt lists with
+# the reason: end-to-end and property cases, 8-30x slower here, whose code lighter cases already
+# run under the sanitizers.
 sanitize: sanitize-build
 	@$(MAKE) deps DEBIAN_PACKAGES="$(TEST_PACKAGES)"
-	@cd $(SAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
-	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/fuzz/lsan.supp:print_suppressions=0 \
-	  ctest --output-on-failure -j$$(nproc)
+	@tests/sanitize_run.sh $(SAN_DIR)
 
 # Each fuzz target for FUZZ_SECONDS (default 600); fuzz-ci is the short run in .ci/run: a fixed
 # seed, a fresh corpus and at most FUZZ_RUNS executions per target, so CI replays exactly the

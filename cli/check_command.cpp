@@ -2,6 +2,7 @@
 // [--svg-layer N OUT.svg]`: exit 0 when the file passes, 1 when it has problems, 2 for bad
 // input. A pose CSV (FILE.csv, with the robot cell as --machine) and rotary G-code
 // (;ROTARY_AXIS: header) are mapped back onto their cylinder (postprocess/inspect/pose_check.h).
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -12,6 +13,7 @@
 #include "cli/progress.h"
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
+#include "postprocess/inspect/check_stream.h"
 #include "postprocess/inspect/mesh_pose_check.h"
 #include "postprocess/inspect/pose_check.h"
 #include "postprocess/preview/preview_image.h"
@@ -102,6 +104,55 @@ int run_curved_check(const CheckArgs& a, const std::string& text,
   return report.ok() ? 0 : 1;
 }
 
+// --svg-layer draws from the whole parsed program: the file is read whole, as before.
+post::CheckReport check_whole(const CheckArgs& a, const post::CheckOptions& options,
+                              PhaseProgress* progress) {
+  slicer::progress_phase(progress, "parsing");
+  const std::string text = slicer::read_file(a.file);
+  post::CheckInput in;
+  try {
+    in = post::read_for_check(text, options.machine, options.rules);
+  } catch (const InputError& e) {
+    throw InputError("input = " + a.file + ": " + e.what());
+  }
+  const post::ParsedGcode& parsed = in.parsed;
+  if (parsed.program.moves.empty() && parsed.issues.empty())
+    throw InputError("input = " + a.file + ": no moves to check (is it G-code?)");
+  post::CheckOptions with_rules = options;
+  with_rules.rules = in.rules;
+  slicer::progress_phase(progress,
+                         "checking " + std::to_string(parsed.program.layers.size()) + " layers");
+  const post::CheckReport report = post::check_parsed(parsed, with_rules);
+  slicer::progress_phase(progress, "drawing the layer");
+  write_svg(parsed, report, a);
+  return report;
+}
+
+// The file read and checked a layer at a time: memory flat in its size.
+post::CheckReport check_streamed(const CheckArgs& a, const post::GcodeFile& file,
+                                 const post::GcodeScan& scan, const post::CheckOptions& options,
+                                 PhaseProgress* progress) {
+  slicer::progress_phase(progress, "checking layers (MiB read)",
+                         static_cast<std::size_t>(file.size_bytes() >> 20));
+  post::CheckReport report;
+  try {
+    report = post::check_gcode_file(file, scan, options, progress);
+  } catch (const InputError& e) {
+    const std::string what = e.what();  // a read error names the file already
+    throw InputError(what.starts_with("input = ") ? what : "input = " + a.file + ": " + what);
+  }
+  if (report.moves == 0 && report.parse_issues.empty())
+    throw InputError("input = " + a.file + ": no moves to check (is it G-code?)");
+  // The layer count is known at the end only: the file's layers, with deposits or without.
+  const auto layers = std::count_if(report.layers.begin(), report.layers.end(),
+                                    [](const post::LayerCheck& l) { return l.layer >= 0; });
+  slicer::progress_phase(progress, "checked " +
+                                       std::to_string(static_cast<std::size_t>(layers) +
+                                                      report.layers_without_deposit) +
+                                       " layers");
+  return report;
+}
+
 int run_check(const CheckArgs& a) {
   if (!(a.arc_tolerance_mm >= post::kMinFlattenToleranceMm && a.arc_tolerance_mm <= 1.0)) {
     throw InputError("arc-tolerance = " + slicer::short_number(a.arc_tolerance_mm) +
@@ -111,7 +162,8 @@ int run_check(const CheckArgs& a) {
     throw InputError("substrate-mesh: only for a robot cell's pose CSV (" + a.file + " is not one)");
   const auto progress = command_progress("check", a.svg_layer.empty() ? 3 : 4);
   slicer::progress_phase(progress.get(), "reading");
-  const std::string text = slicer::read_file(a.file);
+  const post::GcodeFile file(a.file);
+  const post::GcodeScan scan = is_csv(a.file) ? post::GcodeScan{} : file.scan();
   // A set whose writing was killed between two renames still has its journal: its files may
   // be half old and half new (a KRL .src that does not match its .dat).
   if (std::filesystem::exists(a.file + ".strand-commit")) {
@@ -123,40 +175,25 @@ int run_check(const CheckArgs& a) {
   std::unique_ptr<machines::MachineProfile> machine;
   if (!a.machine.empty())
     machine = std::make_unique<machines::MachineProfile>(machines::load_profile(a.machine));
-  if (is_csv(a.file) || post::is_rotary_gcode(text))
-    return run_curved_check(a, text, machine.get(), progress.get());
+  if (is_csv(a.file) || scan.rotary)  // curved files are checked whole
+    return run_curved_check(a, file.text(), machine.get(), progress.get());
   if (machine && machine->robot.enabled) {
     throw InputError(
         "machine = " + a.machine +
         ": a robot cell's motion is in its pose CSV; check that (strand check PART.csv --machine " +
         a.machine + ")");
   }
-  std::optional<post::RulesChoice> given;
+  post::CheckOptions options;
   if (!a.rules.empty()) {
     const std::string rules = slicer::match_choice(a.rules, {"diw", "fdm", "plot"}).value_or(a.rules);
-    given = {post::check_rules_from_string(rules), "given with --rules"};
+    options.rules = post::RulesChoice{post::check_rules_from_string(rules), "given with --rules"};
   }
-  slicer::progress_phase(progress.get(), "parsing");
-  post::CheckInput in;
-  try {
-    in = post::read_for_check(text, machine.get(), given);
-  } catch (const InputError& e) {
-    throw InputError("input = " + a.file + ": " + e.what());
-  }
-  const post::ParsedGcode& parsed = in.parsed;
-  if (parsed.program.moves.empty() && parsed.issues.empty())
-    throw InputError("input = " + a.file + ": no moves to check (is it G-code?)");
-  post::CheckOptions options;
-  options.rules = in.rules;
   options.arc_tolerance_mm = a.arc_tolerance_mm;
   options.touch_mm = slicer::kGcodeResolutionMm;
   options.machine = machine.get();
-  slicer::progress_phase(progress.get(), "checking " + std::to_string(parsed.program.layers.size()) + " layers");
-  const post::CheckReport report = post::check_parsed(parsed, options);
-  if (!a.svg_layer.empty()) {
-    slicer::progress_phase(progress.get(), "drawing the layer");
-    write_svg(parsed, report, a);
-  }
+  const post::CheckReport report = a.svg_layer.empty()
+                                       ? check_streamed(a, file, scan, options, progress.get())
+                                       : check_whole(a, options, progress.get());
   if (progress) progress->finish();
   std::cout << (a.json ? slicer::dump_json(post::to_json(report)) + "\n" : post::to_text(report));
   return report.ok() ? 0 : 1;

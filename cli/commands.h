@@ -24,5 +24,7 @@ void add_preview_command(CLI::App& app, Action& action);
 void add_slice_command(CLI::App& app, Action& action);
 void add_mesh_command(CLI::App& app, Action& action);  // in slice_command.cpp
 void add_serve_command(CLI::App& app, Action& action);
+void add_measure_command(CLI::App& app, Action& action);    // ink tests (issue 32)
+void add_calibrate_command(CLI::App& app, Action& action);
 
 }  // namespace strand::cli

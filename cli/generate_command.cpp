@@ -8,6 +8,7 @@
 #include "machines/profile.h"
 #include "patterns/registry.h"
 #include "cli/commands.h"
+#include "jobs/ink_profile.h"
 #include "jobs/job_runner.h"
 #include "cli/param_flags.h"
 #include "cli/progress.h"
@@ -30,6 +31,7 @@ struct GenerateArgs {
   std::string report;
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
   bool viewer_e = false;
+  std::string material;  // ink profile name or .json path (jobs/ink_profile.h)
 };
 
 // The shared tail of `strand <generator>` and `strand job`: nothing is written unless
@@ -52,7 +54,9 @@ int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
   const auto& table = spec.table();
   JobSettings settings{a.machine, a.output, a.report, a.arc_tolerance_mm, a.viewer_e};
   settings.substrate = given_params(slicer::substrate_table(), a.substrate);
-  return run_and_print(spec, given_params(table, a.flags), settings);
+  nlohmann::json given = given_params(table, a.flags);
+  if (!a.material.empty()) settings.material = apply_ink_profile(load_ink_profile(a.material), a.material, table, given);
+  return run_and_print(spec, given, settings);
 }
 
 // The curved-substrate flags of every generator, named as the table says (--substrate,
@@ -100,6 +104,9 @@ void add_generator_commands(CLI::App& app, Action& action) {
                     "G-code file to write (default " + spec.name +
                         ".gcode; a robot cell writes <name>.csv with <Class>.java, <module>.src/.dat, .extruder.gcode)");
     sub->add_option("--report", args->report, "write a JSON report here");
+    sub->add_option("--material", args->material,
+                    "ink profile (materials/NAME.json from strand calibrate): its speed and layer height "
+                    "unless given");
     add_quantity_option(sub, "--arc-tolerance", args->arc_tolerance_mm, "mm",
                     "max chord error when arcs become G1 segments [mm] (default 0.01)");
     sub->add_flag("--viewer-e", args->viewer_e,

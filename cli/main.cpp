@@ -75,6 +75,8 @@ int run(int argc, char** argv) {
   strand::cli::add_slice_command(app, action);
   strand::cli::add_mesh_command(app, action);
   strand::cli::add_serve_command(app, action);
+  strand::cli::add_measure_command(app, action);
+  strand::cli::add_calibrate_command(app, action);
   strand::cli::add_manual_commands(app, action);
   bool quiet = false, progress = false;
   add_global_flags(app, quiet, progress);

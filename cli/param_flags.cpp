@@ -33,6 +33,7 @@ std::string type_name_for(const slicer::ParamDef& d) {
     case slicer::ParamType::NumberList: return "LIST";
     case slicer::ParamType::Size2: return d.paper ? "WxH|PAPER" : "WxD";
     case slicer::ParamType::Text: return "NAME";
+    case slicer::ParamType::Switch: return "";
     case slicer::ParamType::Number: break;
   }
   if (d.unit == "mm") return "MM";
@@ -43,6 +44,10 @@ std::string type_name_for(const slicer::ParamDef& d) {
 
 void add_param_flags(CLI::App* sub, const slicer::ParamTable& table, ParamFlags& flags) {
   for (const auto& d : table.defs) {
+    if (d.type == slicer::ParamType::Switch) {  // bare --stagger is on; --stagger=off too
+      flags.options[d.key] = sub->add_flag("--" + d.key, flags.text[d.key], help_for(d));
+      continue;
+    }
     flags.options[d.key] = sub->add_option("--" + d.key, flags.text[d.key], help_for(d))->type_name(type_name_for(d));
   }
 }

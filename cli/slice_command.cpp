@@ -11,7 +11,8 @@
 #include "cli/commands.h"
 #include "cli/output_path.h"
 #include "cli/progress.h"
-#include "cli/slice_job.h"
+#include "jobs/slice_job.h"
+#include "jobs/slice_layer_stats.h"
 #include "jobs/job_runner.h"
 #include "machines/profile.h"
 #include "patterns/region_pattern.h"
@@ -29,6 +30,9 @@
 
 namespace strand::cli {
 
+using jobs::SliceResult;
+using jobs::SliceSettings;
+
 namespace {
 
 struct SliceArgs {
@@ -36,6 +40,7 @@ struct SliceArgs {
   std::map<std::string, std::string> text;  // pattern flag -> raw text
   std::map<std::string, CLI::Option*> options;
   std::string report;
+  std::string threads;                // --threads, as given (checked by the job)
   std::vector<std::string> previews;  // .png/.svg/.html/.glb with the mesh under the path
 };
 
@@ -87,6 +92,7 @@ int run_slice(SliceArgs a) {
   for (const auto& g : patterns::generators()) names.push_back(g.name);
   s.pattern = slicer::match_choice(s.pattern, names).value_or(s.pattern);
   a.settings.pattern_values = pattern_values(a);
+  if (!a.threads.empty()) a.settings.threads = jobs::threads_from_text(a.threads);
   if (a.settings.output.empty()) {
     const std::string& input = a.settings.part.empty() ? a.settings.onto : a.settings.part;
     a.settings.output = input.empty() ? "slice.gcode" : output_from_input(input, ".gcode");
@@ -99,7 +105,7 @@ int run_slice(SliceArgs a) {
     if (progress) progress->clear();
     std::cout << line << std::flush;
   };
-  const SliceResult r = produce_slice(a.settings);
+  const SliceResult r = jobs::produce_slice(a.settings);
   slicer::OutputFiles out;
   for (const std::string& input : {a.settings.part, a.settings.onto}) {
     if (!input.empty()) out.protect_input(input);
@@ -122,6 +128,14 @@ int run_slice(SliceArgs a) {
     std::cout << "  pattern        " << a.settings.pattern << ": at most " << most
               << " pattern strand(s) per layer, " << a.settings.perimeters << " perimeter(s)\n";
   }
+  if (d.contains("thin_beads") && d.at("thin_beads").at("count").get<int>() > 0) {
+    char line[96];
+    std::snprintf(line, sizeof line, "%d centre line(s), %.3f mm",
+                  d.at("thin_beads").at("count").get<int>(),
+                  d.at("thin_beads").at("length_mm").get<double>());
+    std::cout << "  thin beads     " << line << "\n";
+  }
+  for (const std::string& line : jobs::layer_summary_lines(d)) std::cout << line << "\n";
   if (d.contains("substrate")) {
     const auto& sub = d.at("substrate");
     char line[256];
@@ -212,6 +226,9 @@ void add_slice_command(CLI::App& app, Action& action) {
                   "(3D orbit view) or .glb (repeatable)");
   add_quantity_option(sub, "--arc-tolerance", s.arc_tolerance_mm, "mm",
                   "max chord error when arcs become G1 segments [mm] (default 0.01)");
+  sub->add_option("--threads", a->threads,
+                  "threads that cut, fill and plan the layers, 1 to 256 (default: every core); "
+                  "the file is the same for any number");
   sub->callback([&action, a] { action = [a] { return run_slice(*a); }; });
 }
 

@@ -1,5 +1,5 @@
-// `strand sweep`: run a sweep file into a directory (optionally one shard of it), or merge
-// shard manifests with --merge.
+// `strand sweep`: run a sweep file into a directory (optionally one shard of it), merge
+// shard manifests with --merge, submit it to Slurm with --slurm, report progress with --status.
 #include <unistd.h>
 
 #include <filesystem>
@@ -8,8 +8,11 @@
 
 #include "cli/commands.h"
 #include "cli/progress.h"
+#include "jobs/content_hash.h"
 #include "jobs/sweep_manifest.h"
 #include "jobs/sweep_runner.h"
+#include "jobs/sweep_slurm_submit.h"
+#include "jobs/sweep_status.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -25,17 +28,97 @@ struct SweepArgs {
   std::string shard = "1/1";
   bool merge = false;
   bool no_previews = false;
+  bool status = false;
+  // --slurm and its options
+  bool slurm = false, resume = false, dry_run = false;
+  int tasks = -1;
+  std::string partition, time, mem;
+  std::vector<std::string> sbatch_args;
 };
+
+// Options that mean nothing without --slurm are refused rather than ignored.
+void check_slurm_flags(const SweepArgs& a) {
+  if (a.slurm) {
+    if (a.shard != "1/1") throw InputError("--shard = " + a.shard + ": --slurm gives each array task its shard");
+    return;
+  }
+  const std::pair<bool, const char*> only[] = {{a.tasks != -1, "--tasks"}, {!a.partition.empty(), "--partition"},
+                                               {!a.time.empty(), "--time"}, {!a.mem.empty(), "--mem"},
+                                               {!a.sbatch_args.empty(), "--sbatch-arg"}, {a.resume, "--resume"},
+                                               {a.dry_run, "--dry-run"}};
+  for (const auto& [given, flag] : only) {
+    if (given) throw InputError(std::string(flag) + ": only with --slurm");
+  }
+}
 
 nlohmann::json read_json(const std::string& path, const std::string& what) {
   return slicer::parse_json(slicer::read_file(path), what + " = " + path);
 }
 
+namespace fs = std::filesystem;
+
+int submit(const SweepArgs& a, const nlohmann::json& source, std::size_t points) {
+  SlurmRequest r;
+  r.strand = fs::read_symlink("/proc/self/exe").string();  // the tasks run this very program
+  r.spec = fs::absolute(a.inputs[0]).lexically_normal().string();
+  r.dir = fs::absolute(a.dir).lexically_normal().string();
+  if (r.dir.size() > 1 && r.dir.back() == '/') r.dir.pop_back();
+  r.workdir = fs::current_path().string();
+  r.tasks = a.tasks;
+  r.partition = a.partition;
+  r.time = a.time;
+  r.mem = a.mem;
+  r.sbatch_args = a.sbatch_args;
+  r.previews = !a.no_previews;
+  const SlurmSubmission s = submit_sweep(r, fnv1a_hex(source.dump()), points, SlurmMode{a.resume, a.dry_run});
+  if (!s.warning.empty()) std::cerr << s.warning << "\n";
+  if (s.shards.empty()) {
+    std::cout << "sweep: every shard of " << s.tasks << " is done; nothing to resume (merge: strand sweep --merge -o "
+              << command_line({a.dir}) << ")\n";
+    return 0;
+  }
+  const std::string tasks = array_ranges(s.shards);
+  if (a.dry_run) {
+    std::cout << "sweep: " << points << " point(s) in " << s.tasks << " shard(s), array tasks " << tasks << ": wrote "
+              << slurm_dir(a.dir) << "/sweep.sbatch and merge.sbatch; submit with:\n";
+    for (const auto& c : s.commands) std::cout << "  " << c << "\n";
+    return 0;
+  }
+  std::cout << "sweep: " << points << " point(s) in " << s.tasks << " shard(s): array job " << s.array_job
+            << " (tasks " << tasks << "), merge job " << s.merge_job << " after it -> " << (fs::path(a.dir) / "manifest.json").string() << "\n"
+            << "watch: squeue -j " << s.array_job << "," << s.merge_job << "; sacct -j " << s.array_job << ","
+            << s.merge_job << "; strand sweep --status -o " << command_line({a.dir}) << "\n"
+            << "logs: " << slurm_dir(a.dir) << "/task-<I>.log, " << slurm_dir(a.dir) << "/merge.log\n";
+  return 0;
+}
+
+int status(const SweepArgs& a) {
+  if (!a.inputs.empty()) throw InputError("--status: give only -o DIR (the sweep file is not needed)");
+  const SweepStatus st = sweep_status(a.dir);
+  std::size_t done = 0, failed = 0, running = 0, waiting = 0;
+  for (const auto& s : st.shards) {
+    done += s.done;
+    failed += s.failed;
+    (s.state == ShardState::Running ? running : waiting) += s.remaining();
+  }
+  std::cout << "sweep: " << a.dir << ": " << st.points << " point(s) in " << st.shards.size() << " shard(s): " << done
+            << " done, " << running << " running, " << failed << " failed, " << waiting << " waiting"
+            << (st.merged ? ", merged" : "") << "\n";
+  for (const auto& s : st.shards) {
+    std::cout << "shard " << s.shard.index << "/" << s.shard.count << ": " << s.points << " point(s), " << s.done
+              << " done, " << (s.state == ShardState::Running ? s.remaining() : 0) << " running, " << s.failed
+              << " failed (" << state_name(s.state) << ")\n";
+  }
+  return failed ? 1 : 0;
+}
+
 int run(const SweepArgs& a) {
   if (a.inputs.size() != 1) throw InputError("sweep: give exactly one sweep file (or --merge)");
   if (a.jobs < 0) throw InputError("-j = " + std::to_string(a.jobs) + ": must be >= 1 (0 = every core)");
+  check_slurm_flags(a);
   const nlohmann::json source = read_json(a.inputs[0], "sweep");
   const SweepSpec spec = sweep_spec_from_json(source);
+  if (a.slurm) return submit(a, source, expand_points(spec).size());
   SweepOptions o;
   o.dir = a.dir;
   o.jobs = a.jobs;
@@ -67,6 +150,10 @@ std::vector<std::string> shard_files(const std::string& dir) {
 }
 
 int merge(const SweepArgs& a) {
+  if (a.inputs.empty()) {  // a submitted sweep: name the tasks that did not finish and their logs
+    const std::string missing = missing_shards_message(a.dir);
+    if (!missing.empty()) throw InputError(missing);
+  }
   const std::vector<std::string> paths = a.inputs.empty() ? shard_files(a.dir) : a.inputs;
   std::vector<nlohmann::json> shards;
   for (const auto& p : paths) shards.push_back(read_json(p, "--merge"));
@@ -75,7 +162,9 @@ int merge(const SweepArgs& a) {
   write_manifest(m, a.dir, Shard{});
   std::cout << "sweep: merged " << paths.size() << " shard(s), " << m.at("points").size() << " point(s) -> "
             << (std::filesystem::path(a.dir) / "manifest.json").string() << "\n";
-  return 0;
+  const auto failed = failed_point_lines(m, a.dir);
+  for (const auto& line : failed) std::cout << line << "\n";
+  return failed.empty() ? 0 : 1;
 }
 
 }  // namespace
@@ -89,7 +178,18 @@ void add_sweep_command(CLI::App& app, Action& action) {
   sub->add_option("--shard", a->shard, "run shard I of N (1-based), e.g. --shard $SLURM_ARRAY_TASK_ID/8");
   sub->add_flag("--merge", a->merge, "merge shard manifests into DIR/manifest.json, manifest.csv, index.html");
   sub->add_flag("--no-previews", a->no_previews, "skip the PNG thumbnail and HTML viewer per point");
-  sub->callback([&action, a] { action = [a] { return a->merge ? merge(*a) : run(*a); }; });
+  sub->add_flag("--status", a->status, "points done / running / failed per shard in DIR, from the journals");
+  sub->add_flag("--slurm", a->slurm, "submit as a Slurm job array (one task per shard) and a merge job after it");
+  sub->add_option("--tasks", a->tasks, "--slurm: array tasks = shards (default: min(points, 32))");
+  sub->add_option("--partition", a->partition, "--slurm: Slurm partition");
+  sub->add_option("--time", a->time, "--slurm: time limit per task (HH:MM:SS)");
+  sub->add_option("--mem", a->mem, "--slurm: memory per task (e.g. 4G)");
+  sub->add_option("--sbatch-arg", a->sbatch_args, "--slurm: one more sbatch option, e.g. --sbatch-arg=--account=lab");
+  sub->add_flag("--resume", a->resume, "--slurm: resubmit only the shards with points not done");
+  sub->add_flag("--dry-run", a->dry_run, "--slurm: write DIR/slurm/*.sbatch and print the sbatch commands only");
+  sub->callback([&action, a] {
+    action = [a] { return a->status ? status(*a) : a->merge ? merge(*a) : run(*a); };
+  });
 }
 
 }  // namespace strand::cli

@@ -18,7 +18,7 @@ namespace strand::cli {
 namespace {
 
 const char* const kJobKeys[] = {"generator", "machine", "params", "output", "report",
-                                "arc-tolerance", "viewer-e", "substrate", "description"};
+                                "arc-tolerance", "viewer-e", "substrate", "description", "schedule"};
 
 bool is_job_key(const std::string& k) {
   for (const char* known : kJobKeys) {
@@ -60,6 +60,14 @@ void refuse_crossing_chords(const slicer::MotionProgram& program, const JobSetti
 
 void vet_produced(const post::Produced& produced, const machines::MachineProfile& machine,
                   double arc_tolerance_mm) {
+  // Never an empty print (issue 29): a job that deposits nothing is refused before its file
+  // is kept (a streamed body stays in the output transaction's temp file, which is dropped).
+  const nlohmann::json totals = produced.report.value("totals", nlohmann::json::object());
+  if (totals.value("deposit_length_mm", 0.0) <= 0.0) {
+    throw InputError(produced.report.value("generator", std::string("job")) +
+                     ": every layer is empty (" + std::to_string(totals.value("layers", 0)) +
+                     " layers, nothing deposited)");
+  }
   JobSettings s;
   s.arc_tolerance_mm = arc_tolerance_mm;
   if (s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm) refuse_crossing_chords(produced.program, s);
@@ -77,7 +85,7 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
     if (!is_job_key(k)) {
       problems.push_back(where + "." + k +
                          ": unknown key (generator, machine, params, output, report, "
-                         "arc-tolerance, viewer-e, substrate, description)");
+                         "arc-tolerance, viewer-e, substrate, description, schedule)");
     }
   }
   if (!problems.empty()) throw InputError(problems);
@@ -103,6 +111,15 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   }
   s.settings.substrate = j.value("substrate", nlohmann::json::object());
   s.description = slicer::get_text(j, "description", where, "");
+  if (j.contains("schedule")) {
+    if (s.generator->name != "scaffold") {
+      throw InputError(where + ".schedule: only the scaffold generator takes a schedule (not " + name + ")");
+    }
+    if (!s.settings.substrate.empty()) {
+      throw InputError(where + ".schedule: a scheduled scaffold is flat (no substrate)");
+    }
+    s.settings.schedule = j.at("schedule");
+  }
   return s;
 }
 
@@ -138,7 +155,8 @@ Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json&
                      "): prints on a cylinder; give --substrate cylinder --substrate-radius MM "
                      "--substrate-length MM");
   }
-  const nlohmann::json values = slicer::resolve_params(generator.table(), params);
+  nlohmann::json values = slicer::resolve_params(generator.table(), params);
+  if (!s.schedule.is_null()) values["schedule"] = s.schedule;
   slicer::progress_phase(s.progress, "generating");
   p.layers = generator.layers(values);
   p.options = post::plan_options_from(p.layers->record, s.arc_tolerance_mm);
@@ -154,7 +172,7 @@ post::Produced produce_prepared(Prepared& p, const patterns::GeneratorSpec& gene
   po.viewer_e = s.viewer_e;
   po.streams = streams;
   po.progress = s.progress;
-  po.keep_program = s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm;
+  po.keep_program = s.keep_program || s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm;
   post::Produced produced = post::produce_layers(*p.layers, p.machine, p.options, po);
   slicer::progress_phase(s.progress, "checking");
   vet_produced(produced, p.machine, s.arc_tolerance_mm);
@@ -203,6 +221,7 @@ post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann:
   out.prepend(path, produced.gcode_head);
   if (s.viewer_e) out.prepend(viewer_output_path(path), produced.viewer_gcode_head);
 #endif
+  if (!s.material.is_null()) produced.report["material"] = s.material;
   if (!s.report.empty()) out.stage(s.report, slicer::dump_json(produced.report) + "\n");
   slicer::progress_phase(s.progress, "writing files");
   out.commit();

@@ -27,10 +27,19 @@ struct JobSettings {
   // The default output's name without extension; empty: the generator's name (`strand job
   // spec.json` sets "spec").
   std::string output_stem;
+  // produce_job also returns the whole planned program (Produced::program), for front ends
+  // that show the moves (the Python module's NumPy arrays).
+  bool keep_program = false;
+  // --material: the ink profile's name, file, applied values and measurements, recorded in
+  // the report (null: none).
+  nlohmann::json material;
+  // A job file's "schedule" (per-layer-range values; strand scaffold only), given to the
+  // generator as the value "schedule" after the table's check; null: none.
+  nlohmann::json schedule;
 };
 
 // A job file's content, checked: {"generator", "machine", "params", "output", "report",
-// "arc-tolerance", "viewer-e", "substrate", "description"}.
+// "arc-tolerance", "viewer-e", "substrate", "description", "schedule"}.
 struct JobSpec {
   const patterns::GeneratorSpec* generator = nullptr;
   nlohmann::json params = nlohmann::json::object();  // as given, keys = CLI long flags
@@ -42,8 +51,9 @@ struct JobSpec {
 // Throws InputError naming the key path.
 JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where);
 
-// The checks every produced file passes before it is written: coarse chords that cross a
-// neighbouring pass are refused (InputError); debug builds also assert `strand check`.
+// The checks every produced file passes before it is written: a file that deposits nothing
+// and coarse chords that cross a neighbouring pass are refused (InputError); debug builds
+// also assert `strand check`.
 void vet_produced(const post::Produced& produced, const machines::MachineProfile& machine,
                   double arc_tolerance_mm);
 

@@ -5,7 +5,6 @@
 #include <tbb/task_arena.h>
 
 #include <filesystem>
-#include <fstream>
 #include <mutex>
 
 #include "postprocess/inspect/gcode_parser.h"
@@ -13,6 +12,7 @@
 #include "postprocess/preview/preview_image.h"
 #include "jobs/content_hash.h"
 #include "jobs/sweep_check.h"
+#include "jobs/sweep_journal.h"
 #include "jobs/sweep_manifest.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -122,8 +122,7 @@ nlohmann::json run_point(const SweepSpec& s, const SweepPoint& p, const SweepOpt
 }
 
 // Rows of earlier runs: the manifest, then the journal of a run that was interrupted
-// before writing it (newer, so it wins). Unreadable input only means less is reused; a
-// torn last journal line is skipped.
+// before writing it (newer, so it wins). Unreadable input only means less is reused.
 std::map<std::string, nlohmann::json> previous_rows(const fs::path& manifest, const fs::path& journal) {
   std::map<std::string, nlohmann::json> rows;
   std::error_code ec;
@@ -135,17 +134,8 @@ std::map<std::string, nlohmann::json> previous_rows(const fs::path& manifest, co
   } catch (const std::exception&) {
     rows.clear();
   }
-  std::ifstream in(journal);
-  for (std::string line; std::getline(in, line);) {
-    const nlohmann::json r = nlohmann::json::parse(line, nullptr, false);
-    if (r.is_object() && r.contains("name") && r["name"].is_string()) rows[r["name"].get<std::string>()] = r;
-  }
+  for (auto& [name, row] : journal_rows(journal.string())) rows[name] = std::move(row);
   return rows;
-}
-
-fs::path journal_path(const SweepOptions& o) {
-  std::string name = manifest_file_name(o.shard);
-  return fs::path(o.dir) / (name.substr(0, name.size() - 5) + ".journal.jsonl");
 }
 
 }  // namespace
@@ -163,16 +153,18 @@ std::string thumbnail_png(const post::PreviewScene& scene) {
 SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const SweepOptions& o,
                       const ProgressFn& progress) {
   std::vector<SweepPoint> points;
-  for (auto& p : expand_points(spec)) {
-    if (in_shard(p.index, o.shard)) points.push_back(std::move(p));
+  const std::vector<SweepPoint> all = expand_points(spec);
+  for (const auto& p : all) {
+    if (in_shard(p.index, o.shard)) points.push_back(p);
   }
   std::error_code ec;
   fs::create_directories(fs::path(o.dir) / (o.previews ? "previews" : ""), ec);
   if (ec) throw InputError("-o = " + o.dir + ": cannot create the directory");
-  const fs::path journal_file = journal_path(o);
+  // Finished points are journalled as they complete, so an interrupted sweep resumes; the
+  // journal's lock keeps a second run of this shard out until this one ends.
+  const fs::path journal_file = fs::path(o.dir) / journal_file_name(o.shard);
+  SweepJournal journal(journal_file.string(), o.shard, all.size());
   const auto prev = previous_rows(fs::path(o.dir) / manifest_file_name(o.shard), journal_file);
-  // Finished points are journalled as they complete, so an interrupted sweep resumes.
-  std::ofstream journal(journal_file, std::ios::app);
   std::vector<nlohmann::json> rows(points.size());
   std::mutex m;
   SweepProgress state;
@@ -185,7 +177,7 @@ SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const
       bool reused = false;
       rows[i] = run_point(spec, points[i], o, it == prev.end() ? nullptr : &it->second, reused);
       const std::lock_guard<std::mutex> lock(m);
-      if (rows[i].at("status") == "ok") journal << rows[i].dump() << "\n" << std::flush;
+      if (rows[i].at("status") == "ok") journal.append(rows[i]);
       ++state.done;
       state.failed += rows[i].at("status") == "failed";
       state.reused += reused;
@@ -196,8 +188,7 @@ SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const
   SweepResult r;
   r.manifest = make_manifest(spec, source, rows, o.shard);
   write_manifest(r.manifest, o.dir, o.shard);
-  journal.close();
-  fs::remove(journal_file, ec);
+  journal.finish();
   for (const auto& row : rows) {
     r.failed += row.at("status") == "failed";
     r.dropped += row.at("status") == "dropped";

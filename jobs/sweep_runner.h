@@ -35,7 +35,7 @@ struct SweepResult {
 // as ok with the same parameters hash (generator, machine name or profile file content,
 // arc tolerance, parameters and Strand version) and its G-code is present with the
 // recorded content hash.
-// Each finished point is also appended to DIR/manifest[-shard-I-of-N].journal.jsonl, read
+// Each finished point is also appended to the shard's journal (jobs/sweep_journal.h), read
 // like the manifest on the next run and removed once the manifest is written, so a sweep
 // interrupted before its manifest resumes where it stopped.
 // Writes the G-codes, previews, the manifest(s) and, for an unsharded run, index.html.

@@ -33,6 +33,7 @@ class Writer {
       segment(i);
     }
     flush();
+    handshake_end();
     for (const auto& l : m_.end_gcode) text_ += l + "\n";
     out_.gcode = std::move(text_);
     return std::move(out_);
@@ -58,6 +59,7 @@ class Writer {
             fmt_fixed(slicer::rad_to_deg(l.turn_max_rad), 1) + " deg\n";
     const auto& x = m_.robot.extruder;
     const int level = lap_signal_level(m_.robot, lap);
+    if (!reset_) handshake_reset(), reset_ = true;
     if (x.ready_pin >= 0) {
       // Two-way handshake: the previous lap's moves done, tell the robot this lap may start.
       text_ += "M400 ; finish the previous lap\n";
@@ -68,6 +70,34 @@ class Writer {
       text_ += "M226 P" + std::to_string(x.handshake_pin) + " S" + std::to_string(level) +
               " ; wait for the robot's lap signal\n";
     }
+  }
+
+  // Before lap 0: the ready output to the level before lap 0, then wait until the robot has
+  // reset its lap output too (levels an earlier run left are never taken for lap 0).
+  void handshake_reset() {
+    const auto& x = m_.robot.extruder;
+    if (x.ready_pin < 0 && x.handshake_pin < 0) return;
+    const int idle = handshake_idle_level(m_.robot);
+    text_ += "; handshake reset: both lines to the level before lap 0\n";
+    if (x.ready_pin >= 0) {
+      text_ += "M42 P" + std::to_string(x.ready_pin) + " S" + (idle == 1 ? "255" : "0") +
+               " ; reset: ready for no lap yet\n";
+    }
+    if (x.handshake_pin >= 0) {
+      text_ += "M226 P" + std::to_string(x.handshake_pin) + " S" + std::to_string(idle) +
+               " ; reset: wait for the robot's reset\n";
+    }
+  }
+
+  // After the last lap: its moves done, the ready output back to the level before lap 0 (the
+  // robot waits for it before it resets its lap output): a finished run leaves both there.
+  void handshake_end() {
+    const auto& x = m_.robot.extruder;
+    if (x.ready_pin < 0) return;
+    text_ += "M400 ; finish the last lap\n";
+    text_ += "M42 P" + std::to_string(x.ready_pin) + " S" +
+             (handshake_idle_level(m_.robot) == 1 ? "255" : "0") +
+             " ; handshake reset after the last lap: ready for no lap\n";
   }
 
   double time_at(std::size_t i) const {
@@ -125,6 +155,7 @@ class Writer {
   std::string text_;
   ExtruderProgram out_;
   std::size_t lap_ = 0;
+  bool reset_ = false;
   double run_e_ = 0.0, run_s_ = 0.0, run_first_feed_ = 0.0, dwell_s_ = 0.0, carry_ms_ = 0.0;
 };
 
@@ -140,6 +171,8 @@ double e_per_mm(const MachineProfile& m, double speed_mm_per_s, double bead_area
 int lap_signal_level(const RobotCell& cell, int lap) {
   return (cell.extruder.handshake_state + lap) % 2;
 }
+
+int handshake_idle_level(const RobotCell& cell) { return 1 - lap_signal_level(cell, 0); }
 
 double deposit_e(const MachineProfile& m, double length_mm, double duration_s,
                  double bead_area_mm2) {

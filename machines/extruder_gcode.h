@@ -48,4 +48,10 @@ std::string write_extruder_gcode(const slicer::PoseProgram& program, const Machi
 // levels alternate so a late printer never waits for a signal it already missed.
 int lap_signal_level(const RobotCell& cell, int lap);
 
+// The level both handshake lines rest at between runs (the level of "lap -1"). Each program
+// drives its output there at start (the extruder then waits for the robot's) and after the
+// last lap (the robot after the extruder's), so a finished run, whatever its number of laps,
+// leaves both lines where the next run's lap 0 cannot be taken from them.
+int handshake_idle_level(const RobotCell& cell);
+
 }  // namespace strand::machines

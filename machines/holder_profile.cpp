@@ -74,6 +74,8 @@ RobotMotionSetup read_motion(const nlohmann::json& r) {
   RobotMotionSetup m;
   m.approach_mm = r.value("approach_mm", m.approach_mm);
   m.retract_mm = r.value("retract_mm", m.retract_mm);
+  m.clearance_mm = r.value("clearance_mm", m.clearance_mm);
+  m.transit_margin_mm = r.value("transit_margin_mm", m.transit_margin_mm);
   if (r.contains("home_joints_deg")) {
     std::array<double, 7> home{};
     const auto& h = r.at("home_joints_deg");
@@ -207,6 +209,11 @@ RobotCell read_robot_cell(const nlohmann::json& j, const std::string& origin,
     c.nozzle_cone.half_angle_deg = cone.value("half_angle_deg", c.nozzle_cone.half_angle_deg);
     c.nozzle_cone.length_mm = cone.value("length_mm", c.nozzle_cone.length_mm);
     c.nozzle_cone.tip_radius_mm = cone.value("tip_radius_mm", c.nozzle_cone.tip_radius_mm);
+  }
+  if (r.contains("keep_out")) {
+    const auto& body = r.at("keep_out");
+    c.keep_out.radius_mm = body.value("radius_mm", c.keep_out.radius_mm);
+    c.keep_out.length_mm = body.value("length_mm", c.keep_out.length_mm);
   }
   c.extruder = read_extruder(j.at("extruder"));
   c.programs = read_programs(r);

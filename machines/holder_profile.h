@@ -70,6 +70,12 @@ struct RobotPrograms {
 struct RobotMotionSetup {
   double approach_mm = 20.0;  // first pose approached from this far along the nozzle axis
   double retract_mm = 20.0;   // and left the same way after the last
+  // The joint moves from and to home end and start this far from the first and last pose
+  // along the nozzle axis (a linear move joins it to the approach): robot_transit.h.
+  double clearance_mm = 100.0;
+  // Every motion outside the laps keeps the workpiece this far from the nozzle's cone and
+  // the keep-out (the final approach and the first retract, which end at the nozzle, excepted).
+  double transit_margin_mm = 5.0;
   std::optional<std::array<double, 7>>
       home_joints_deg;              // PTP here first and last (A7 = 0 on 6 axes)
   int ptp_velocity_percent = 10;    // of each axis' maximum
@@ -107,6 +113,13 @@ struct RobotCell {
   double mount_rotation_deg = 0.0;  // cylinder u = 0 line about flange z from flange +x
   // The nozzle's outside near the tip, checked against a robot-held substrate mesh.
   slicer::NozzleCone nozzle_cone;
+  // The extruder's body above the cone: a cylinder about the nozzle axis from the cone's top,
+  // which no motion outside the laps may bring the workpiece into.
+  struct KeepOut {
+    double radius_mm = 40.0;
+    double length_mm = 200.0;
+    bool operator==(const KeepOut&) const = default;
+  } keep_out;
   ExtruderSetup extruder;
   RobotPrograms programs;
   RobotMotionSetup motion;

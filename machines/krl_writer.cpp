@@ -98,8 +98,35 @@ Eigen::Matrix3d kuka_abc_rotation(const Vec3& abc_deg) {
       .toRotationMatrix();
 }
 
+namespace {
+
+// Before lap 0 the lap output goes to the level before lap 0, which the extruder waits for
+// (extruder_gcode.h: handshake_idle_level); handshake_end leaves both lines there.
+std::string handshake_reset(const RobotCell& c) {
+  const std::string idle = handshake_idle_level(c) == 1 ? "TRUE" : "FALSE";
+  std::string s =
+      "  ; handshake reset: the lap output and the extruder's ready to the level before lap 0\n";
+  s += "  $OUT[" + std::to_string(c.programs.krl_lap_output) + "]=" + idle + " ; reset\n";
+  return s;
+}
+
+// After the last lap: wait until the extruder has finished it and reset its ready, then reset
+// the lap output, so the next run starts from the levels before lap 0 on both lines.
+std::string handshake_end(const RobotCell& c) {
+  const std::string idle = handshake_idle_level(c) == 1 ? "TRUE" : "FALSE";
+  std::string s = "  ; handshake reset after the last lap: both lines to the level before lap 0\n";
+  if (c.programs.krl_ready_input > 0) {
+    s += "  WAIT FOR $IN[" + std::to_string(c.programs.krl_ready_input) + "] == " + idle +
+         " ; the extruder has finished and reset\n";
+  }
+  return s + "  $OUT[" + std::to_string(c.programs.krl_lap_output) + "]=" + idle + " ; reset\n";
+}
+
+}  // namespace
+
 KrlProgram write_krl(const slicer::PoseProgram& p, const MachineProfile& m, const std::string& base,
-                     const std::vector<std::string>& header, double blend_mm) {
+                     const std::vector<std::string>& header, double blend_mm,
+                     const TransitPlan& transit) {
   const RobotCell& c = m.robot;
   const std::string module = krl_module_name(base);
   const Eigen::Matrix3d nozzle = nozzle_frame_rotation(c);
@@ -156,20 +183,26 @@ KrlProgram write_krl(const slicer::PoseProgram& p, const MachineProfile& m, cons
     return frame_text(pt.contact_mm,
                       kuka_abc_deg(rotation_of(pt.workpiece_wxyz).transpose() * nozzle));
   };
-  s += axes(start_joints(c, moved_along_nozzle(c, first, mo.approach_mm)),
-            "approach: " + fmt_fixed(mo.approach_mm, 1) +
-                " mm from the first pose along the nozzle axis");
+  s += axes(transit.start_clearance_joints,
+            "clearance pose: " + fmt_fixed(transit.start_clearance_mm, 1) +
+                " mm from the first pose along the nozzle axis (the joint move checked clear of "
+                "the nozzle)");
   s += "  $VEL.CP = " + fmt_fixed(c.travel_speed_mm_per_s / 1000.0, 6) + " ; m/s\n";
+  s += "  LIN " + frame_of(transit.start_approach) + " ; approach: " + fmt_fixed(mo.approach_mm, 1) +
+       " mm from the first pose along the nozzle axis\n";
   s += "  LIN " + frame_of(first) + " ; onto the first pose\n";
   for (const auto& sub : subs) s += "  " + sub.name + "()\n";
   s += "  $VEL.CP = " + fmt_fixed(c.travel_speed_mm_per_s / 1000.0, 6) + " ; m/s\n";
   s += "  LIN " + frame_of(moved_along_nozzle(c, p.points.back(), mo.retract_mm)) +
        " ; retract along the nozzle axis\n";
+  s += "  LIN " + frame_of(transit.end_clearance) + " ; clearance pose: " +
+       fmt_fixed(transit.end_clearance_mm, 1) + " mm from the last pose\n";
   if (mo.home_joints_deg) s += axes(home, "home");
   s += "END\n";
   std::string previous_frame = frame_of(first);
   for (const auto& sub : subs) {
     s += "\nDEF " + sub.name + "()\n";
+    if (&sub == &subs.front()) s += handshake_reset(c);
     if (sub.starts_lap && c.programs.krl_ready_input > 0) {
       // Two-way handshake: the extruder is parked and ready with this lap's level.
       s += "  WAIT FOR $IN[" + std::to_string(c.programs.krl_ready_input) +
@@ -197,6 +230,7 @@ KrlProgram write_krl(const slicer::PoseProgram& p, const MachineProfile& m, cons
       s += "  LIN " + frame + " C_DIS\n";
       ++out.lin_points;
     }
+    if (&sub == &subs.back()) s += handshake_end(c);
     s += "END\n";
   }
   out.dat = "&ACCESS RVP\nDEFDAT " + module + "\n";

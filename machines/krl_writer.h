@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "machines/profile.h"
+#include "machines/robot_transit.h"
 #include "slicer/pose_program.h"
 
 namespace strand::machines {
@@ -40,6 +41,7 @@ Eigen::Matrix3d nozzle_frame_rotation(const RobotCell& cell);
 // Precondition: m.robot.enabled.
 KrlProgram write_krl(const slicer::PoseProgram& program, const MachineProfile& m,
                      const std::string& base_name, const std::vector<std::string>& header,
-                     double blend_mm);
+                     double blend_mm,
+    const TransitPlan& transit);
 
 }  // namespace strand::machines

@@ -134,6 +134,8 @@ const std::vector<Field>& schema() {
           {"acceleration_mm_per_s2", T::Number, false, 1.0, 100000.0},
           {"approach_mm", T::Number, false, 0.0, 500.0},
           {"retract_mm", T::Number, false, 0.0, 500.0},
+          {"clearance_mm", T::Number, false, 0.0, 1000.0},
+          {"transit_margin_mm", T::Number, false, 0.0, 200.0},
           {"home_joints_deg", T::NumberList},
           {"ptp_velocity_percent", T::Number, false, 1.0, 100.0},
           object("load", false, {
@@ -144,6 +146,10 @@ const std::vector<Field>& schema() {
               {"half_angle_deg", T::Number, false, 0.0, 89.0},
               {"length_mm", T::Number, false, 0.0, 1000.0},
               {"tip_radius_mm", T::Number, false, 0.0, 100.0},
+          }),
+          object("keep_out", false, {  // the extruder's body above the cone, about the nozzle axis
+              {"radius_mm", T::Number, false, 0.0, 1000.0},
+              {"length_mm", T::Number, false, 0.0, 5000.0},
           }),
       }),
       object("extruder", false, {

@@ -37,6 +37,30 @@ std::string joints_text(const Joints& q) {
   return t + "]";
 }
 
+// Before lap 0 the lap output goes to the level before lap 0, which the extruder waits for
+// (extruder_gcode.h: handshake_idle_level); handshake_end leaves both lines there.
+std::string handshake_reset(const RobotCell& c) {
+  const RobotPrograms& pr = c.programs;
+  const std::string idle = handshake_idle_level(c) == 1 ? "1" : "0";
+  std::string s =
+      "    ! handshake reset: the lap output and the extruder's ready to the level before lap 0\n";
+  return s + "    SetDO " + pr.rapid_lap_signal + ", " + idle + ";\n";
+}
+
+// After the last lap: wait until the extruder has finished it and reset its ready, then reset
+// the lap output, so the next run starts from the levels before lap 0 on both lines.
+std::string handshake_end(const RobotCell& c) {
+  const RobotPrograms& pr = c.programs;
+  const std::string idle = handshake_idle_level(c) == 1 ? "1" : "0";
+  std::string s;
+  if (!pr.rapid_ready_signal.empty()) {
+    s += "    ! the extruder has finished and reset\n    WaitDI " + pr.rapid_ready_signal + ", " +
+         idle + "\\MaxTime:=" + fmt_fixed(kReadyTimeoutS, 0) + ";\n";
+  }
+  s += "    ! handshake reset after the last lap: the lap output to the level before lap 0\n";
+  return s + "    SetDO " + pr.rapid_lap_signal + ", " + idle + ";\n";
+}
+
 int quadrant(double rad) { return static_cast<int>(std::floor(rad / (slicer::kPi / 2.0) + 1e-12)); }
 
 }  // namespace
@@ -70,7 +94,8 @@ std::array<int, 4> abb_confdata(const ArmModel& arm, const Joints& q) {
 
 RapidProgram write_rapid(const slicer::PoseProgram& p, const MachineProfile& m,
                          const std::string& module, const std::string& csv_name,
-                         const std::vector<std::string>& header, double blend_mm) {
+                         const std::vector<std::string>& header, double blend_mm,
+                         const TransitPlan& transit) {
   const RobotCell& c = m.robot;
   const RobotMotionSetup& mo = c.motion;
   const RobotPrograms& pr = c.programs;
@@ -131,8 +156,8 @@ RapidProgram write_rapid(const slicer::PoseProgram& p, const MachineProfile& m,
   }
   s += "  CONST speeddata strandPtp := [" + fmt_fixed(10.0 * mo.ptp_velocity_percent, 1) + ", " +
        fmt_fixed(5.0 * mo.ptp_velocity_percent, 1) + ", 5000, 1000];\n";
-  const Joints start = start_joints(c, moved_along_nozzle(c, pts.front(), mo.approach_mm));
-  s += "  ! The approach, " + fmt_fixed(mo.approach_mm, 1) +
+  const Joints start = transit.start_clearance_joints;
+  s += "  ! The clearance pose, " + fmt_fixed(transit.start_clearance_mm, 1) +
        " mm from the first pose along the nozzle axis, by axis values (deg) from IK.\n";
   s += "  CONST jointtarget strandStart := [" + joints_text(start) + ", " + kExtax + "];\n";
   if (mo.home_joints_deg) {
@@ -179,18 +204,24 @@ RapidProgram write_rapid(const slicer::PoseProgram& p, const MachineProfile& m,
          a + ", TRUE\\DecelMax:=" + a + ";\n";
   }
   if (mo.home_joints_deg) s += "    ! home\n    MoveAbsJ strandHome, strandPtp, fine" + tw + "\n";
-  s += "    ! approach\n    MoveAbsJ strandStart, strandPtp, fine" + tw + "\n";
+  s += "    ! clearance pose (the joint move checked clear of the nozzle)\n    MoveAbsJ strandStart, "
+       "strandPtp, fine" + tw + "\n";
+  s += "    ! approach\n    MoveL " + robtarget(transit.start_approach, start) + ", " + travel +
+       ", fine" + tw + "\n";
   s += "    ! onto the first pose\n    MoveL " + robtarget(pts.front(), solution(0)) + ", " +
        travel + ", fine" + tw + "\n";
   for (const auto& pc : procs) s += "    " + pc.name + ";\n";
   const slicer::PosePoint retract = moved_along_nozzle(c, pts.back(), mo.retract_mm);
   s += "    ! retract along the nozzle axis\n    MoveL " +
        robtarget(retract, solution(pts.size() - 1)) + ", " + travel + ", fine" + tw + "\n";
+  s += "    ! clearance pose\n    MoveL " + robtarget(transit.end_clearance, transit.end_clearance_joints) +
+       ", " + travel + ", fine" + tw + "\n";
   if (mo.home_joints_deg) s += "    ! home\n    MoveAbsJ strandHome, strandPtp, fine" + tw + "\n";
   s += "  ENDPROC\n";
   std::string previous = robtarget(pts.front(), solution(0));
   for (const auto& pc : procs) {
     s += "\n  PROC " + pc.name + "()\n";
+    if (&pc == &procs.front()) s += handshake_reset(c);
     if (pc.starts_lap) {
       const std::string level = lap_signal_level(c, pc.lap) == 1 ? "1" : "0";
       if (!pr.rapid_ready_signal.empty()) {
@@ -210,6 +241,7 @@ RapidProgram write_rapid(const slicer::PoseProgram& p, const MachineProfile& m,
            (lap_end ? "fine" : "strandZone") + tw + "\n";
       ++out.move_l;
     }
+    if (&pc == &procs.back()) s += handshake_end(c);
     s += "  ENDPROC\n";
   }
   s += "ENDMODULE\n";

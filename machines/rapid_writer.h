@@ -15,6 +15,7 @@
 
 #include "machines/profile.h"
 #include "machines/robot_arm.h"
+#include "machines/robot_transit.h"
 #include "slicer/pose_program.h"
 
 namespace strand::machines {
@@ -33,6 +34,7 @@ std::array<int, 4> abb_confdata(const ArmModel& arm, const Joints& q);
 // Precondition: m.robot.enabled. `module` is rapid_module_name of the output stem.
 RapidProgram write_rapid(const slicer::PoseProgram& program, const MachineProfile& m,
                          const std::string& module, const std::string& csv_name,
-                         const std::vector<std::string>& header, double blend_mm);
+                         const std::vector<std::string>& header, double blend_mm,
+    const TransitPlan& transit);
 
 }  // namespace strand::machines

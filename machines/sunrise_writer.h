@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "machines/profile.h"
+#include "machines/robot_transit.h"
 #include "slicer/pose_program.h"
 
 namespace strand::machines {
@@ -22,6 +23,7 @@ std::string java_class_name(const std::string& base_name);
 // `csv_name`: the CSV's file name as copied to the controller. Precondition: m.robot.enabled.
 std::string write_sunrise_java(const slicer::PoseProgram& program, const MachineProfile& m,
                                const std::string& base_name, const std::string& csv_name,
-                               const std::vector<std::string>& header);
+                               const std::vector<std::string>& header,
+    const TransitPlan& transit);
 
 }  // namespace strand::machines

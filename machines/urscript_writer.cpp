@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "machines/contact_speed.h"
 #include "machines/extruder_gcode.h"
 #include "machines/gcode_format.h"
 #include "machines/joint_analysis.h"
@@ -42,6 +43,39 @@ Eigen::Isometry3d tcp_target(const slicer::PosePoint& pt, double radius_mm) {
   return w * Eigen::Translation3d(radius_mm, 0.0, 0.0);
 }
 
+// v of movel in m/s: 0.001 mm/s steps, finer below 1 mm/s so a slow TCP keeps its time.
+std::string speed_text(double mm_per_s) {
+  return fmt_fixed(mm_per_s / 1000.0, mm_per_s < 1.0 ? 9 : 6);
+}
+
+// Before lap 0 the lap output goes to the level of "lap -1", which the extruder waits for:
+// levels an aborted run left are not taken for this run's lap 0 (handshake_end: a finished
+// run leaves both lines there).
+std::string handshake_reset(const RobotCell& c) {
+  const RobotPrograms& pr = c.programs;
+  const std::string idle = handshake_idle_level(c) == 1 ? "True" : "False";
+  std::string s =
+      "  # handshake reset: the lap output and the extruder's ready to the level before lap 0\n";
+  s += "  set_standard_digital_out(" + std::to_string(pr.ur_lap_output) + ", " + idle +
+       ")  # reset\n";
+  return s;
+}
+
+// After the last lap: wait until the extruder has finished it and reset its ready, then reset
+// the lap output, so the next run starts from the levels before lap 0 on both lines.
+std::string handshake_end(const RobotCell& c) {
+  const RobotPrograms& pr = c.programs;
+  const std::string idle = handshake_idle_level(c) == 1 ? "True" : "False";
+  std::string s = "  # handshake reset after the last lap: both lines to the level before lap 0\n";
+  if (pr.ur_ready_input >= 0) {
+    s += "  while (get_standard_digital_in(" + std::to_string(pr.ur_ready_input) + ") != " + idle +
+         "):  # the extruder has finished and reset\n";
+    s += "    sync()\n  end\n";
+  }
+  return s + "  set_standard_digital_out(" + std::to_string(pr.ur_lap_output) + ", " + idle +
+         ")  # reset\n";
+}
+
 }  // namespace
 
 Vec3 rotation_vector(const Eigen::Matrix3d& r) {
@@ -66,7 +100,8 @@ Eigen::Isometry3d contact_tcp_in_flange(const RobotCell& cell, double radius_mm)
 
 std::string write_urscript(const slicer::PoseProgram& p, const MachineProfile& m,
                            const std::string& name, const std::string& csv_name,
-                           const std::vector<std::string>& header, double blend_mm) {
+                           const std::vector<std::string>& header, double blend_mm,
+                           const TransitPlan& transit) {
   const RobotCell& c = m.robot;
   const RobotMotionSetup& mo = c.motion;
   const RobotPrograms& pr = c.programs;
@@ -90,21 +125,29 @@ std::string write_urscript(const slicer::PoseProgram& p, const MachineProfile& m
     s += "  movej(" + joints_text(home) + joint_speed + "  # home\n";
   }
   const auto& first = p.points.front();
-  s += "  movej(" + joints_text(start_joints(c, moved_along_nozzle(c, first, mo.approach_mm))) +
-       joint_speed + "  # approach: " + fmt_fixed(mo.approach_mm, 1) +
-       " mm from the first pose along the nozzle axis\n";
+  s += "  movej(" + joints_text(transit.start_clearance_joints) + joint_speed +
+       "  # clearance pose: " + fmt_fixed(transit.start_clearance_mm, 1) +
+       " mm from the first pose along the nozzle axis (the joint move checked clear of the "
+       "nozzle)\n";
   int tcp_layer = first.layer;
   s += "  set_tcp(" + pose_text(contact_tcp_in_flange(c, layer_radius(tcp_layer))) + ")  # layer " +
        std::to_string(tcp_layer) + " contact frame\n";
   const std::string travel = ", v=" + fmt_fixed(c.travel_speed_mm_per_s / 1000.0, 6);
+  s += "  movel(" + pose_text(tcp_target(transit.start_approach, layer_radius(tcp_layer))) + accel +
+       travel + ", r=0)  # approach: " + fmt_fixed(mo.approach_mm, 1) +
+       " mm from the first pose along the nozzle axis\n";
   s += "  movel(" + pose_text(tcp_target(first, layer_radius(tcp_layer))) + accel + travel +
        ", r=0)  # onto the first pose\n";
   std::string previous = pose_text(tcp_target(first, layer_radius(tcp_layer)));
   Vec3 previous_contact = first.contact_mm;
   const auto& pts = p.points;
+  // The TCP is a point of the workpiece, not the contact point: each movel's v is the row's
+  // contact speed scaled by TCP chord / contact chord, so the row takes its planned time.
+  const std::vector<ProgrammedMotion> timed = timed_motions(p, MovedFrame::WorkpieceFrame);
   for (std::size_t i = 1; i < pts.size(); ++i) {
     const auto& pt = pts[i];
     const bool lap_start = pt.lap != pts[i - 1].lap || i == 1;
+    if (i == 1) s += handshake_reset(c);
     if (lap_start) {
       const bool level = lap_signal_level(c, pt.lap) == 1;
       const std::string lv = level ? "True" : "False";
@@ -138,13 +181,17 @@ std::string write_urscript(const slicer::PoseProgram& p, const MachineProfile& m
       if (r_m < kMinBlendM) r_m = 0.0;
     }
     previous_contact = pt.contact_mm;
-    s += "  movel(" + target + accel + ", v=" + fmt_fixed(pt.speed_mm_per_s / 1000.0, 6) +
+    s += "  movel(" + target + accel + ", v=" + speed_text(timed[i].speed_mm_per_s) +
          ", r=" + fmt_fixed(r_m, 6) + ")\n";
   }
+  s += handshake_end(c);
   s += "  movel(" +
        pose_text(
            tcp_target(moved_along_nozzle(c, pts.back(), mo.retract_mm), layer_radius(tcp_layer))) +
        accel + travel + ", r=0)  # retract along the nozzle axis\n";
+  s += "  movel(" + pose_text(tcp_target(transit.end_clearance, layer_radius(tcp_layer))) + accel +
+       travel + ", r=0)  # clearance pose: " + fmt_fixed(transit.end_clearance_mm, 1) +
+       " mm from the last pose (the joint move home checked clear of the nozzle)\n";
   if (mo.home_joints_deg) {
     Joints home = Joints::Zero();
     for (int i = 0; i < 6; ++i) home[i] = slicer::deg_to_rad((*mo.home_joints_deg)[i]);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "machines/profile.h"
+#include "machines/robot_transit.h"
 #include "slicer/pose_program.h"
 
 namespace strand::machines {
@@ -31,6 +32,7 @@ Eigen::Isometry3d contact_tcp_in_flange(const RobotCell& cell, double radius_mm)
 // radius of movel.
 std::string write_urscript(const slicer::PoseProgram& program, const MachineProfile& m,
                            const std::string& name, const std::string& csv_name,
-                           const std::vector<std::string>& header, double blend_mm);
+                           const std::vector<std::string>& header, double blend_mm,
+    const TransitPlan& transit);
 
 }  // namespace strand::machines

@@ -3,6 +3,8 @@
 #include "patterns/perimeter_splice.h"
 
 #include <algorithm>
+#include <cmath>
+#include <deque>
 #include <limits>
 
 namespace strand::patterns {
@@ -64,6 +66,160 @@ std::vector<Vec2> rotated(const std::vector<Vec2>& loop, const Nearest& n) {
   return out;
 }
 
+// The closest pair of points of two closed loops (vertex of one to an edge of the other).
+struct Neck {
+  Nearest on_a, on_b;
+  double distance = std::numeric_limits<double>::infinity();
+};
+
+Neck neck_between(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  Neck best;
+  for (int side = 0; side < 2; ++side) {
+    const auto& from = side == 0 ? a : b;
+    const auto& to = side == 0 ? b : a;
+    for (std::size_t i = 0; i + 1 < from.size(); ++i) {
+      const Nearest n = nearest_on(to, from[i]);
+      if (n.distance >= best.distance) continue;
+      const Nearest here{i, from[i], n.distance};
+      best.distance = n.distance;
+      best.on_a = side == 0 ? here : n;
+      best.on_b = side == 0 ? n : here;
+    }
+  }
+  return best;
+}
+
+// Arc length along a closed loop's points (last repeats first) to a point on edge `e`.
+double loop_position(const std::vector<Vec2>& loop, const std::vector<double>& cum,
+                     const Nearest& n) {
+  return cum[n.edge] + (n.at - loop[n.edge]).norm();
+}
+
+// A loop no strand end took, spliced into the middle of a strand that runs beside it: the
+// strand leaves at q1 for the loop's p1, runs round the loop the long way to p2 and comes back
+// at q2, a gap further along; the strand between q1 and q2 and the loop between p1 and p2
+// (each about a gap long) are left out, so the two links lie side by side, a gap apart, and
+// close the loop's opening. Only straight stretches of the strand are used. The first place
+// along the strand where both links are clear is taken (deterministic). `all` gains the links.
+bool splice_into_middle(Stroke& s, const std::vector<Vec2>& loop, double gap_mm,
+                        std::vector<const Stroke*>& all, std::deque<Stroke>& links) {
+  const std::size_t m = loop.size() - 1;
+  if (m < 3 || s.segments.empty()) return false;
+  std::vector<double> loop_cum{0.0};
+  for (std::size_t i = 0; i + 1 < loop.size(); ++i)
+    loop_cum.push_back(loop_cum.back() + (loop[i + 1] - loop[i]).norm());
+  const double loop_length = loop_cum.back();
+  // The strand's vertices and arc lengths (arcs count as their chords: never split).
+  const std::vector<Vec2> ps = points_of(s);
+  std::vector<double> cum{0.0};
+  for (std::size_t i = 0; i + 1 < ps.size(); ++i) cum.push_back(cum.back() + (ps[i + 1] - ps[i]).norm());
+  const auto at = [&](double t, std::size_t& seg) {
+    seg = static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), t) - cum.begin());
+    seg = std::clamp<std::size_t>(seg, 1, ps.size() - 1) - 1;  // segment seg: ps[seg] -> ps[seg+1]
+    const double len = cum[seg + 1] - cum[seg];
+    const double f = len > 0.0 ? std::clamp((t - cum[seg]) / len, 0.0, 1.0) : 0.0;
+    return Vec2(ps[seg] + f * (ps[seg + 1] - ps[seg]));
+  };
+  const double step = gap_mm / 4.0, reach = kLinkSlack * gap_mm;
+  // Work bound: samples along the strand times the loop's edges.
+  const double samples = cum.back() / step;
+  if (samples * static_cast<double>(m) > 2e7) return false;
+  for (double t = step; t + gap_mm < cum.back() - step; t += step) {
+    std::size_t k1 = 0, k2 = 0;
+    const Vec2 q1 = at(t, k1), q2 = at(t + gap_mm, k2);
+    bool straight = true;
+    for (std::size_t k = k1; k <= k2; ++k) straight = straight && s.segments[k].kind == slicer::SegmentKind::Line;
+    if (!straight) continue;
+    const Nearest n1 = nearest_on(loop, q1);
+    if (n1.distance > reach || n1.distance < 0.5 * gap_mm) continue;
+    const Nearest n2 = nearest_on(loop, q2);
+    if (n2.distance > reach || n2.distance < 0.5 * gap_mm) continue;
+    double d = loop_position(loop, loop_cum, n2) - loop_position(loop, loop_cum, n1);
+    if (d > loop_length / 2) d -= loop_length;
+    if (d < -loop_length / 2) d += loop_length;
+    if (std::abs(d) < 0.5 * gap_mm || std::abs(d) > 2.0 * gap_mm) continue;
+    if (slicer::segment_contact(q1, n1.at, q2, n2.at, 1e-9) != slicer::Contact::None) continue;
+    if (!link_is_clear(q1, n1.at, all) || !link_is_clear(q2, n2.at, all)) continue;
+    // Round the loop the long way: against the loop's order when p2 lies ahead of p1.
+    std::vector<Vec2> round;
+    if (d > 0) {
+      for (std::size_t k = 0; k < m; ++k) {
+        const std::size_t v = (n1.edge + m - k) % m;
+        round.push_back(loop[v]);
+        if (v == (n2.edge + 1) % m) break;
+      }
+    } else {
+      for (std::size_t k = 1; k <= m; ++k) {
+        const std::size_t v = (n1.edge + k) % m;
+        round.push_back(loop[v]);
+        if (v == n2.edge) break;
+      }
+    }
+    Stroke out = s;
+    out.segments.assign(s.segments.begin(), s.segments.begin() + static_cast<std::ptrdiff_t>(k1));
+    const auto add = [&](const Vec2& p, slicer::Feature f) {
+      const Vec2 from = out.segments.empty() ? out.start_mm : out.segments.back().end_mm;
+      if ((p - from).norm() > 1e-9) out.segments.push_back(slicer::line_to(p, f));
+    };
+    add(q1, s.segments[k1].feature);
+    add(n1.at, slicer::Feature::Wall);
+    for (const Vec2& p : round) add(p, slicer::Feature::Wall);
+    add(n2.at, slicer::Feature::Wall);
+    add(q2, slicer::Feature::Wall);
+    add(s.segments[k2].end_mm, s.segments[k2].feature);
+    out.segments.insert(out.segments.end(), s.segments.begin() + static_cast<std::ptrdiff_t>(k2) + 1,
+                        s.segments.end());
+    links.push_back({q1, {slicer::line_to(n1.at, slicer::Feature::Wall)}});
+    all.push_back(&links.back());
+    links.push_back({q2, {slicer::line_to(n2.at, slicer::Feature::Wall)}});
+    all.push_back(&links.back());
+    s = std::move(out);
+    return true;
+  }
+  return false;
+}
+
+// Loops no strand took, joined in pairs where two lie within two bead widths of each other
+// (a neck the pattern does not fill): round the first from the neck, across, round the
+// second. A loop is entered and left at one point, so a pair is as far as a chain goes.
+std::vector<Stroke> pair_loops(std::vector<Stroke> loops, double gap_mm,
+                               std::vector<const Stroke*> all) {
+  std::vector<Stroke> out;
+  std::vector<bool> done(loops.size(), false);
+  std::vector<Stroke> links;
+  links.reserve(loops.size());
+  for (std::size_t i = 0; i < loops.size(); ++i) {
+    if (done[i]) continue;
+    done[i] = true;
+    const std::vector<Vec2> pi = points_of(loops[i]);
+    std::size_t pick = loops.size();
+    Neck best;
+    for (std::size_t j = i + 1; j < loops.size(); ++j) {
+      if (done[j]) continue;
+      const Neck n = neck_between(pi, points_of(loops[j]));
+      if (n.distance < best.distance) best = n, pick = j;
+    }
+    if (pick == loops.size() || best.distance > 2.0 * gap_mm ||
+        !link_is_clear(best.on_a.at, best.on_b.at, all)) {
+      out.push_back(loops[i]);
+      continue;
+    }
+    done[pick] = true;
+    links.push_back({best.on_a.at, {slicer::line_to(best.on_b.at, slicer::Feature::Wall)}});
+    all.push_back(&links.back());
+    Stroke joined = loops[i];
+    const std::vector<Vec2> first = rotated(pi, best.on_a);
+    const std::vector<Vec2> second = rotated(points_of(loops[pick]), best.on_b);
+    joined.start_mm = first.front();
+    joined.segments.clear();
+    for (std::size_t k = 1; k < first.size(); ++k)
+      joined.segments.push_back(slicer::line_to(first[k], slicer::Feature::Wall));
+    for (const Vec2& q : second) joined.segments.push_back(slicer::line_to(q, slicer::Feature::Wall));
+    out.push_back(std::move(joined));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<Stroke> splice_loops(std::vector<Stroke> loops, std::vector<Stroke> strands,
@@ -111,9 +267,21 @@ std::vector<Stroke> splice_loops(std::vector<Stroke> loops, std::vector<Stroke> 
     }
     out.push_back(std::move(joined));
   }
+  std::deque<Stroke> middle_links;  // stable addresses: `all` points at them
+  std::vector<Stroke> left;
   for (std::size_t l = 0; l < loops.size(); ++l) {
-    if (!used[l]) out.push_back(loops[l]);
+    if (used[l]) continue;
+    const std::vector<Vec2> ring = points_of(loops[l]);
+    bool spliced = false;
+    for (Stroke& s : out) {
+      if (splice_into_middle(s, ring, gap_mm, all, middle_links)) {
+        spliced = true;
+        break;
+      }
+    }
+    if (!spliced) left.push_back(loops[l]);
   }
+  for (Stroke& s : pair_loops(std::move(left), gap_mm, all)) out.push_back(std::move(s));
   return out;
 }
 

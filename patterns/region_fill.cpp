@@ -102,7 +102,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     out.pattern_length_mm += len;
     pieces.push_back(std::move(piece));
   }
-  std::vector<slicer::Stroke> strands = join_pieces(rs, pieces, {p.connector, d, h});
+  std::vector<slicer::Stroke> strands = join_pieces(rs, pieces, {p.connector, d, h}, inner);
   out.pattern_strands = static_cast<int>(strands.size());
   strands = splice_loops(std::move(inner), std::move(strands), d, out.strokes);
   out.strokes.insert(out.strokes.end(), strands.begin(), strands.end());
@@ -113,7 +113,7 @@ namespace {
 
 // Layer k filled when asked for, ordered from where layer k - 1 ended; the sums for the
 // derived sizes accumulate as layers pass and complete the record with the last one.
-class PartFillLayers final : public slicer::LayerSource {
+class PartFillLayers final : public PartFillSource {
  public:
   PartFillLayers(PartFill part, RegionPattern p) : part_(std::move(part)), p_(std::move(p)) {
     record.generator = "slice";
@@ -122,11 +122,18 @@ class PartFillLayers final : public slicer::LayerSource {
 
   std::size_t layer_count() const override { return part_.layers.size(); }
 
-  slicer::Layer layer(std::size_t k) override {
-    const double z = (static_cast<double>(k) + 1.0) * p_.layer_height_mm;
-    check_wall(part_.layers, k, p_.nozzle_mm, z);
+  LayerFill fill(std::size_t k) const override {
+    check_wall(part_.layers, k, p_.nozzle_mm, z_of(k));
     LayerFill f = fill_layer(part_.layers[k], p_, static_cast<int>(k), part_.perimeters, part_.half_extent_mm);
-    slicer::Layer layer{z, p_.layer_height_mm, ordered(std::move(f.strokes), at_)};
+    if (k < part_.extra_strokes.size())
+      f.strokes.insert(f.strokes.end(), part_.extra_strokes[k].begin(), part_.extra_strokes[k].end());
+    return f;
+  }
+
+  const Region& region(std::size_t k) const override { return part_.layers.at(k); }
+
+  slicer::Layer layer_from(std::size_t k, LayerFill f) override {
+    slicer::Layer layer{z_of(k), p_.layer_height_mm, ordered(std::move(f.strokes), at_)};
     if (!layer.strokes.empty()) at_ = layer.strokes.back().end_mm();
     for (const auto& s : layer.strokes) deposited_ += slicer::stroke_length(s);
     pattern_length_ += f.pattern_length_mm;
@@ -139,6 +146,8 @@ class PartFillLayers final : public slicer::LayerSource {
   }
 
  private:
+  double z_of(std::size_t k) const { return (static_cast<double>(k) + 1.0) * p_.layer_height_mm; }
+
   void finish() {
     const double area = slicer::bead_area_mm2(p_.nozzle_mm, p_.layer_height_mm);
     const double sliced_volume = region_area_ * p_.layer_height_mm;
@@ -170,7 +179,7 @@ class PartFillLayers final : public slicer::LayerSource {
 
 }  // namespace
 
-std::unique_ptr<slicer::LayerSource> part_fill_layers(PartFill part, RegionPattern p) {
+std::unique_ptr<PartFillSource> part_fill_layers(PartFill part, RegionPattern p) {
   return std::make_unique<PartFillLayers>(std::move(part), std::move(p));
 }
 

@@ -33,6 +33,9 @@ struct PartFill {
   slicer::Vec2 half_extent_mm = slicer::Vec2::Zero();
   double volume_mm3 = 0.0;  // the part's volume, for the deposited porosity
   int perimeters = 0;
+  // Per layer, beads printed as they are beside the fill (thin features' centre lines,
+  // patterns/thin_feature.h); shorter than `layers` or empty: none.
+  std::vector<std::vector<slicer::Stroke>> extra_strokes;
   slicer::Progress* progress = nullptr;  // told each filled layer (steps of the current phase)
 };
 
@@ -42,8 +45,21 @@ struct PartFill {
 // that no bead reaches, where the layers below and above also cover it (so the thin rim
 // at the top or bottom of a curved part is not a wall), naming where.
 slicer::Toolpath fill_part(const PartFill& part, const RegionPattern& p);
+// part_fill_layers' layers in two steps, so many layers can be filled at once: fill(k), the
+// costly part (wall check, perimeters, clipped and joined pattern), is const and may run for
+// any layers in any order on several threads; layer_from(k, fill) then orders the strokes
+// from where layer k - 1 ended and adds its sums, in order k = 0, 1, ... layer(k) is both.
+class PartFillSource : public slicer::LayerSource {
+ public:
+  // Throws InputError where the nozzle is wider than the part's wall (see fill_part).
+  virtual LayerFill fill(std::size_t k) const = 0;
+  virtual slicer::Layer layer_from(std::size_t k, LayerFill fill) = 0;
+  virtual const slicer::Region& region(std::size_t k) const = 0;  // layer k's sliced region
+  slicer::Layer layer(std::size_t k) override { return layer_from(k, fill(k)); }
+};
+
 // The same one layer at a time: the record names the generator at once; its derived sizes
 // (keys already there are kept) are complete once the last layer has been made.
-std::unique_ptr<slicer::LayerSource> part_fill_layers(PartFill part, RegionPattern p);
+std::unique_ptr<PartFillSource> part_fill_layers(PartFill part, RegionPattern p);
 
 }  // namespace strand::patterns

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "patterns/join_search.h"
+
 namespace strand::patterns {
 
 using slicer::Vec2;
@@ -296,10 +298,74 @@ slicer::Stroke emit(const RingSet& rs, const std::vector<FillPiece>& pieces, con
   return s;
 }
 
+// The loop beside each vertex: the nearest within 1.05 bead widths, as perimeter_splice
+// takes it (the fill boundary lies one bead inside the innermost perimeter; where holes
+// merge with each other or the outside at that depth, one ring runs beside several loops).
+std::vector<int> loop_of_vertices(const RingSet& rs, const std::vector<FillPiece>& pieces,
+                                  const std::vector<slicer::Stroke>& loops, double width_mm) {
+  const double reach = 1.05 * width_mm;
+  std::vector<std::pair<Vec2, Vec2>> boxes;
+  for (const slicer::Stroke& l : loops) {
+    Vec2 lo = l.start_mm, hi = l.start_mm;
+    for (const auto& seg : l.segments) lo = lo.cwiseMin(seg.end_mm), hi = hi.cwiseMax(seg.end_mm);
+    boxes.emplace_back(lo - Vec2(reach, reach), hi + Vec2(reach, reach));
+  }
+  std::vector<int> out(pieces.size() * 2, -1);
+  for (std::size_t v = 0; v < out.size(); ++v) {
+    const RingSpot spot = spot_of(pieces, static_cast<int>(v));
+    if (spot.ring < 0) continue;
+    const Vec2 q = point_at(rs, spot);
+    double best = reach;
+    for (std::size_t l = 0; l < loops.size(); ++l) {
+      if ((q.array() < boxes[l].first.array()).any() || (q.array() > boxes[l].second.array()).any())
+        continue;
+      Vec2 at = loops[l].start_mm;
+      for (const auto& seg : loops[l].segments) {
+        const double dist = slicer::point_segment_distance(q, at, seg.end_mm);
+        if (dist < best) best = dist, out[v] = static_cast<int>(l);
+        at = seg.end_mm;
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<int> mates_of(const std::vector<Chain>& chains, std::size_t vertices) {
+  std::vector<int> mate(vertices, -1);
+  for (const Chain& c : chains) {
+    for (std::size_t k = 1; k < c.size(); ++k) {
+      mate[tail_vertex(c[k - 1])] = head_vertex(c[k]);
+      mate[head_vertex(c[k])] = tail_vertex(c[k - 1]);
+    }
+  }
+  return mate;
+}
+
+// Chains walked from each strand end in index order; a join runs the shorter way round when
+// both ways reach the neighbour (a ring with two ends).
+std::vector<Chain> chains_of(const EndGraph& g, const std::vector<int>& mate) {
+  std::vector<Chain> out;
+  std::vector<bool> done(mate.size(), false);
+  for (int v = 0; v < static_cast<int>(mate.size()); ++v) {
+    if (mate[v] >= 0 || done[v]) continue;
+    Chain c{{v / 2, v % 2 == 1, true}};
+    for (int u = v ^ 1; mate[u] >= 0; u = mate[u] ^ 1) {
+      const int w = mate[u];
+      const bool forward =
+          g.next[u] == w && (g.prev[u] != w || g.gap_next[u] <= g.gap_next[w]);
+      c.push_back({w / 2, w % 2 == 1, forward});
+    }
+    done[v] = done[tail_vertex(c.back())] = true;
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<slicer::Stroke> join_pieces(const RingSet& rs, const std::vector<FillPiece>& pieces,
-                                        const JoinOptions& options) {
+                                        const JoinOptions& options,
+                                        const std::vector<slicer::Stroke>& loops) {
   // Every growth variant is tried; the fewest strands win, then the least ring deposited.
   Joiner joiner(rs, pieces);
   const EndGraph g = end_graph(rs, pieces);
@@ -314,6 +380,12 @@ std::vector<slicer::Stroke> join_pieces(const RingSet& rs, const std::vector<Fil
       best_len = len;
     }
   }
+  const JoinGraph jg{g.next, g.prev, loop_of_vertices(rs, pieces, loops, options.width_mm),
+                     static_cast<int>(loops.size())};
+  std::vector<int> mate = mates_of(best, g.next.size());
+  const int before = join_score(jg, mate);
+  improve_joins(jg, mate);
+  if (join_score(jg, mate) < before) best = chains_of(g, mate);  // else the variant as it was
   std::vector<slicer::Stroke> out;
   for (const Chain& c : best) out.push_back(emit(rs, pieces, c, options));
   return out;

@@ -23,8 +23,12 @@ struct JoinOptions {
 // are joined, shortest stretch first, and exchanges free ends that can then be joined.
 // Twenty-four growth variants (order either way, started at 0, 1/4, 1/2 or 3/4 of it; the
 // nearer neighbour, always forward or always backward along the ring) are tried and the
-// fewest strands kept, then the least ring deposited. Deterministic.
+// fewest strands kept, then the least ring deposited. Then a local search
+// (patterns/join_search.h) moves strand ends round the rings until no two strands can merge
+// and, with `loops` (the innermost perimeter loops, for patterns/perimeter_splice.h), until no
+// loop beside which no strand ends can get one. Deterministic.
 std::vector<slicer::Stroke> join_pieces(const RingSet& rs, const std::vector<FillPiece>& pieces,
-                                        const JoinOptions& options);
+                                        const JoinOptions& options,
+                                        const std::vector<slicer::Stroke>& loops = {});
 
 }  // namespace strand::patterns

@@ -126,6 +126,10 @@ RegionPattern region_pattern(const GeneratorSpec& g, const nlohmann::json& given
   if (g.name == "scaffold") {
     probe["size"] = nlohmann::json::array({2 * half.x() + 1.0, 2 * half.y() + 1.0});
     const ScaffoldParams s = scaffold_params_from(slicer::resolve_params(g.table(), probe));
+    if (s.grade.axis != GradeAxis::None || s.stagger) {
+      throw InputError(std::string("scaffold.") + (s.stagger ? "stagger" : "grade") +
+                       ": not for a sliced part's fill (use strand scaffold)");
+    }
     p.nozzle_mm = s.nozzle_mm;
     p.layer_height_mm = s.layer_height_mm;
     p.speed_mm_per_min = s.speed_mm_per_min;

@@ -1,8 +1,12 @@
 // The list of generators; add one line per design.
 #include "patterns/registry.h"
 
+#include "patterns/collapse_test.h"
+#include "patterns/fusion_test.h"
 #include "patterns/hexachiral.h"
+#include "patterns/line_matrix.h"
 #include "patterns/missing_rib.h"
+#include "patterns/pore_test.h"
 #include "patterns/reentrant.h"
 #include "patterns/scaffold.h"
 #include "patterns/tetrachiral.h"
@@ -119,6 +123,18 @@ const std::vector<GeneratorSpec>& generators() {
        &reentrant_table, &generate_recorded<&reentrant_params_from, &reentrant_layers>,
        &generate_wrapped_recorded<&reentrant_params_from, &generate_reentrant_wrapped>,
        &layers_recorded<&reentrant_params_from, &reentrant_layers>},
+      {"line-matrix", "ink test: lines in a grid of --speeds x --flows with fiducial marks, to measure from a photo",
+       &line_matrix_table, &generate_recorded<&line_matrix_params_from, &line_matrix_layers>, nullptr,
+       &layers_recorded<&line_matrix_params_from, &line_matrix_layers>},
+      {"pore-test", "ink test: an N x N grid of square pores (0/90 log-pile) with fiducial marks, to measure Pr from a photo",
+       &pore_test_table, &generate_recorded<&pore_test_params_from, &pore_test_layers>, nullptr,
+       &layers_recorded<&pore_test_params_from, &pore_test_layers>},
+      {"fusion-test", "ink test: one meander whose filament spacing shrinks, with fiducial marks, to see where filaments fuse",
+       &fusion_test_table, &generate_recorded<&fusion_test_params_from, &fusion_test_layers>, nullptr,
+       &layers_recorded<&fusion_test_params_from, &fusion_test_layers>},
+      {"collapse-test", "ink test: pillars with growing gaps and one filament across their tops, with fiducial marks",
+       &collapse_test_table, &generate_recorded<&collapse_test_params_from, &collapse_test_layers>, nullptr,
+       &layers_recorded<&collapse_test_params_from, &collapse_test_layers>},
   };
   return kGenerators;
 }

@@ -10,6 +10,9 @@
 #include <cmath>
 #include <limits>
 
+#include "patterns/scaffold_grade.h"
+#include "patterns/scaffold_plan.h"
+#include "patterns/scaffold_zones.h"
 #include "slicer/tolerances.h"
 #include "slicer/units.h"
 
@@ -101,21 +104,43 @@ std::pair<double, double> clip(const Rect& r, const Vec2& n, const Vec2& u, doub
 
 struct LayerLines {
   Vec2 u, n;
+  std::vector<double> offsets;              // c of each line c*n + s*u, ascending
   std::vector<std::pair<Vec2, Vec2>> ends;  // (u- end, u+ end) on the grown rectangle
   double inside_length_mm = 0.0;            // filament length inside the footprint
 };
 
-LayerLines layer_lines(const ScaffoldParams& p, const ScaffoldGeometry& g, double angle_deg) {
+// Offsets of a layer's lines along its normal: spread over the extent at the layer's pitch
+// and centred, or where a grade along x or y puts them (a layer parallel to the grade's axis
+// keeps the pitch of the mean gap).
+std::vector<double> line_offsets(const ScaffoldParams& p, const ScaffoldGeometry& g, const Vec2& n,
+                                 double extent, double pitch_mm) {
+  const GradeAxis axis = p.grade.axis;
+  const double n_axis = axis == GradeAxis::X ? n.x() : axis == GradeAxis::Y ? n.y() : 0.0;
+  if (std::abs(n_axis) > 1e-9) {
+    const bool x = axis == GradeAxis::X;
+    return graded_offsets_mm(p.grade, p.nozzle_mm, n_axis, x ? g.width_mm : g.depth_mm,
+                             x ? p.width_mm : p.depth_mm, (extent - p.nozzle_mm) / 2);
+  }
+  const int count = static_cast<int>(std::floor((extent - p.nozzle_mm) / pitch_mm + 1e-9)) + 1;
+  std::vector<double> out;
+  for (int i = 0; i < count; ++i) out.push_back((i - (count - 1) / 2.0) * pitch_mm);
+  return out;
+}
+
+LayerLines layer_lines(const ScaffoldParams& p, const ScaffoldGeometry& g, const LayerPlan& plan) {
   LayerLines L;
-  const double a = slicer::deg_to_rad(angle_deg);
+  const double a = slicer::deg_to_rad(plan.angle_deg);
   L.u = Vec2(std::cos(a), std::sin(a));
   L.n = Vec2(-std::sin(a), std::cos(a));
   const Rect foot{g.width_mm / 2, g.depth_mm / 2};
   const Rect grown{foot.hx + p.overhang_mm, foot.hy + p.overhang_mm};
   const double extent = g.width_mm * std::abs(L.n.x()) + g.depth_mm * std::abs(L.n.y());
-  const int count = static_cast<int>(std::floor((extent - p.nozzle_mm) / p.pitch_mm + 1e-9)) + 1;
-  for (int i = 0; i < count; ++i) {
-    const double c = (i - (count - 1) / 2.0) * p.pitch_mm;
+  L.offsets = line_offsets(p, g, L.n, extent, plan.pitch_mm);
+  if (plan.staggered && L.offsets.size() > 1) {  // half a pitch over: between the lines
+    for (std::size_t i = 0; i + 1 < L.offsets.size(); ++i) L.offsets[i] = (L.offsets[i] + L.offsets[i + 1]) / 2;
+    L.offsets.pop_back();
+  }
+  for (const double c : L.offsets) {
     const auto [s0, s1] = clip(grown, L.n, L.u, c);
     const auto [f0, f1] = clip(foot, L.n, L.u, c);
     L.ends.emplace_back(c * L.n + s0 * L.u, c * L.n + s1 * L.u);
@@ -188,6 +213,12 @@ ScaffoldGeometry scaffold_geometry(const ScaffoldParams& p) {
   g.filaments_y = count(p.depth_mm);
   g.width_mm = (g.filaments_x - 1) * p.pitch_mm + p.nozzle_mm;
   g.depth_mm = (g.filaments_y - 1) * p.pitch_mm + p.nozzle_mm;
+  if (p.grade.axis == GradeAxis::X || p.grade.axis == GradeAxis::Y) {
+    const bool x = p.grade.axis == GradeAxis::X;
+    const auto centres = graded_centres_mm(p.grade, p.nozzle_mm, x ? p.width_mm : p.depth_mm);
+    (x ? g.filaments_x : g.filaments_y) = static_cast<int>(centres.size());
+    (x ? g.width_mm : g.depth_mm) = centres.back() + p.nozzle_mm / 2;
+  }
   g.height_mm = p.layers * p.layer_height_mm;
   g.link_clearance_mm = p.pitch_mm;
   return g;
@@ -195,30 +226,47 @@ ScaffoldGeometry scaffold_geometry(const ScaffoldParams& p) {
 
 namespace {
 
-// Layer k is the serpentine of angle k (mod the list) that starts nearest where layer k - 1
-// ended, joined to it by a link outside: each layer needs only the previous one's end.
+// Layer k is the serpentine of its plan (angle, spacing, stagger) that starts nearest where
+// layer k - 1 ended, joined to it by a link outside: each layer needs only the previous one's
+// end. The lines are made again per layer (cheap), so memory does not grow with the stack.
 class ScaffoldLayers final : public slicer::LayerSource {
  public:
   explicit ScaffoldLayers(const ScaffoldParams& p)
-      : p_(p), g_(scaffold_geometry(p)), grown_{g_.width_mm / 2 + p.overhang_mm, g_.depth_mm / 2 + p.overhang_mm} {
-    // The lines depend only on the angle: one set per entry of the angle list.
-    const std::size_t kinds = std::min(p.angles_deg.size(), static_cast<std::size_t>(std::max(p.layers, 0)));
-    for (std::size_t i = 0; i < kinds; ++i) lines_.push_back(layer_lines(p, g_, p.angles_deg[i]));
-    double inside_length = 0.0;
+      : p_(p), g_(scaffold_geometry(p)), grown_{g_.width_mm / 2 + p.overhang_mm, g_.depth_mm / 2 + p.overhang_mm},
+        plans_(scaffold_layer_plans(p)) {
+    const bool zones = p.grade.axis != GradeAxis::None || !p.schedule.empty();
+    // A cycle of plans repeats unless a z grade or a schedule changes layers one by one.
+    const bool by_layer = p.grade.axis == GradeAxis::Z || !p.schedule.empty();
+    const std::size_t cycle = by_layer ? plans_.size() : p.angles_deg.size() * (p.stagger ? 2 : 1);
+    double inside_length = 0.0;  // in nozzle-wide beads: each layer's length times its flow
     nlohmann::json per_layer = nlohmann::json::array();
-    for (int k = 0; k < p.layers; ++k) {
-      inside_length += lines_[static_cast<std::size_t>(k) % lines_.size()].inside_length_mm;
-      if (k < static_cast<int>(p.angles_deg.size())) per_layer.push_back(lines_[static_cast<std::size_t>(k)].ends.size());
+    std::vector<LaidLayer> laid;
+    for (std::size_t k = 0; k < plans_.size(); ++k) {
+      const LayerLines lines = layer_lines(p, g_, plans_[k]);
+      inside_length += lines.inside_length_mm * plans_[k].flow;
+      if (k < cycle) per_layer.push_back(lines.ends.size());
+      if (zones) {
+        const double area = plans_[k].flow * bead_area(p);
+        laid.push_back({lines.u, lines.n, lines.offsets, area, plans_[k].width_mm, area * lines.inside_length_mm});
+      }
     }
     record.generator = "scaffold";
     record.derived = scaffold_report(p, g_, g_.width_mm, per_layer, inside_length);
     record.derived["link_clearance_mm"] = g_.link_clearance_mm;
+    if (p.stagger) record.derived["stagger_mm"] = p.pitch_mm / 2;
+    if (p.grade.axis != GradeAxis::None) record.derived["porosity_zones"] = grade_zones(p, g_, laid);
+    if (!p.schedule.empty()) {
+      record.derived["porosity_by_schedule"] = schedule_zones(p, g_, laid);
+      nlohmann::json speeds = nlohmann::json::array();
+      for (const auto& plan : plans_) speeds.push_back(plan.speed_mm_per_min);
+      record.derived["stroke_speeds_mm_per_min"] = speeds;  // one strand per layer
+    }
   }
 
-  std::size_t layer_count() const override { return static_cast<std::size_t>(std::max(p_.layers, 0)); }
+  std::size_t layer_count() const override { return plans_.size(); }
 
   slicer::Layer layer(std::size_t k) override {
-    const LayerLines& lines = lines_[k % lines_.size()];
+    const LayerLines lines = layer_lines(p_, g_, plans_[k]);
     // The variant starting nearest the previous layer's end; only that one is built.
     int best = 0;
     double best_gap = std::numeric_limits<double>::infinity();
@@ -233,7 +281,7 @@ class ScaffoldLayers final : public slicer::LayerSource {
       stroke.start_mm = prev_end_;
       stroke.segments = std::move(segs);
     }
-    stroke.width_mm = p_.nozzle_mm;
+    stroke.width_mm = plans_[k].width_mm;
     stroke.height_mm = p_.layer_height_mm;
     prev_end_ = stroke.end_mm();
     const int layer_number = static_cast<int>(k) + 1;
@@ -244,7 +292,7 @@ class ScaffoldLayers final : public slicer::LayerSource {
   ScaffoldParams p_;
   ScaffoldGeometry g_;
   Rect grown_;
-  std::vector<LayerLines> lines_;
+  std::vector<LayerPlan> plans_;
   Vec2 prev_end_ = Vec2::Zero();
 };
 

@@ -4,6 +4,7 @@
 
 #include <nlohmann/json.hpp>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "slicer/layer_source.h"
@@ -11,6 +12,34 @@
 #include "slicer/toolpath.h"
 
 namespace strand::patterns {
+
+enum class GradeAxis { None, X, Y, Z };
+
+// `--gap a..b --grade x` (linear from a at the low edge to b at the high edge) or
+// `--gap a,b,c --grade x` (equal zones of one gap each). The gap after a filament is the
+// grade's value where that gap starts (its low edge along the axis; for z, the layer's
+// bottom), so a gap is the schedule's value at one known place.
+struct GapGrade {
+  GradeAxis axis = GradeAxis::None;
+  bool linear = false;
+  std::vector<double> gaps_mm;  // linear: {from, to}; zones: one per zone
+
+  // The gap at `fraction` of the graded length (clamped to [0, 1]).
+  double at(double fraction) const;
+  double mean_mm() const;
+  // Zones the report gives porosity for: one per listed value; 4 equal ones for a..b.
+  int zone_count() const { return linear ? 4 : static_cast<int>(gaps_mm.size()); }
+};
+
+// One entry of a job file's "schedule": layers first..last (0-based) take the values given.
+struct ScheduleEntry {
+  int first = 0;
+  int last = 0;
+  std::optional<double> speed_mm_per_min;
+  std::optional<double> flow;   // bead section relative to a nozzle-wide bead
+  std::optional<double> gap_mm;
+  std::optional<double> angle_deg;
+};
 
 struct ScaffoldParams {
   double nozzle_mm = 0.84;        // filament diameter d
@@ -22,6 +51,9 @@ struct ScaffoldParams {
   double overhang_mm = 0.84;      // how far U-turns stick out of the footprint
   std::vector<double> angles_deg = {0.0, 90.0};
   double speed_mm_per_min = 250.0;
+  GapGrade grade;                       // axis None: every gap is pitch - nozzle
+  bool stagger = false;                 // every second layer of a direction offset half a pitch
+  std::vector<ScheduleEntry> schedule;  // sorted, not overlapping
 };
 
 // Sizes derived from the parameters, computed in one place.

@@ -73,6 +73,11 @@ void add_axial(Stroke& s, const Ring& r) {
 bool is_axial(double angle_deg) { return std::abs(std::remainder(angle_deg - 90.0, 180.0)) < 1e-9; }
 
 void check_angles(const ScaffoldParams& p) {
+  if (p.grade.axis != GradeAxis::None || p.stagger || !p.schedule.empty()) {
+    throw InputError(std::string("scaffold.") + (p.stagger ? "stagger" : p.schedule.empty() ? "grade" : "schedule") +
+                     ": with --wrap full the scaffold keeps one gap, one cycle and no stagger "
+                     "(graded, staggered and scheduled piles are flat)");
+  }
   for (double a : p.angles_deg) {
     if (!is_axial(a) && std::abs(std::remainder(a, 180.0)) >= 1e-9) {
       throw InputError(slicer::problem(

@@ -46,6 +46,7 @@ const char* type_name(slicer::ParamType t) {
     case slicer::ParamType::Text: return "text";
     case slicer::ParamType::NumberList: return "number-list";
     case slicer::ParamType::Size2: return "size";
+    case slicer::ParamType::Switch: return "switch";
   }
   return "text";
 }

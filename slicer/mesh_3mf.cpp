@@ -79,9 +79,9 @@ class Reader3mf {
            std::to_string(kMaxMeshTriangles) + " limit");
     }
     // Every placed copy copies its object's vertices, used or not.
-    if (vertices > 3 * kMaxMeshTriangles) {
+    if (vertices > kMaxMeshVertices) {
       fail(std::to_string(vertices) + " vertices in its build items, more than the " +
-           std::to_string(3 * kMaxMeshTriangles) + " limit");
+           std::to_string(kMaxMeshVertices) + " limit");
     }
     for (const auto& [id, t] : placed) append(id, t, 0);
     if (mesh_.triangles.empty()) fail("no triangles in its build items");

@@ -13,12 +13,15 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "slicer/input_error.h"
 #include "slicer/mesh_3mf.h"
+#include "slicer/mesh_3mf_package.h"
 #include "slicer/mesh_3mf_xml.h"
 #include "slicer/mesh_io.h"
 
@@ -76,7 +79,20 @@ struct PackageCounts {
   std::uint64_t lib3mf_elements = 0;  // resources (elements with an id), components, items
   std::uint64_t triangles = 0;
   std::vector<std::string> model_targets;  // 3D model relationship targets (.rels parts)
+  // Per model part (archive index): prefixes used where no xmlns declares them, and where the
+  // root element's name ends (declarations for them go there).
+  std::map<std::size_t, std::set<std::string>> undeclared;
+  std::map<std::size_t, std::size_t> root_name_end;
 };
+
+// Namespaces Strand reads, or may ignore without losing geometry (colours, textures, the
+// production extension's UUIDs and part paths, which lib3mf resolves). A file that requires
+// any other extension is refused: its geometry may be in it (slices, beams) or depend on it.
+bool supported_namespace(const std::string& ns) {
+  return ns == "http://schemas.microsoft.com/3dmanufacturing/core/2015/02" ||
+         ns == "http://schemas.microsoft.com/3dmanufacturing/material/2015/02" ||
+         ns == "http://schemas.microsoft.com/3dmanufacturing/production/2015/06";
+}
 
 inline constexpr const char* kModelRelationship =
     "http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel";
@@ -85,15 +101,22 @@ inline constexpr const char* kModelRelationship =
 class PartSink : public XmlSink {
  public:
   enum class Role { Model, Relationships, Other };
-  PartSink(PackageCounts& counts, std::string part, Role role, const std::string& path)
-      : counts_(counts), part_(std::move(part)), role_(role), path_(path) {}
+  PartSink(PackageCounts& counts, std::string part, std::size_t index, Role role,
+           const std::string& path)
+      : counts_(counts), part_(std::move(part)), index_(index), role_(role), path_(path) {}
 
-  void start(const std::string& name, const std::vector<XmlAttr>& attrs,
-             bool self_closing) override {
+  void start(const std::string& name, const std::string& prefix,
+             const std::vector<XmlAttr>& attrs, bool self_closing) override {
     if (role_ == Role::Relationships && name == "Relationship") relationship(attrs);
     std::vector<long long> owners;
-    if (role_ == Role::Model) model_element(name, attrs, owners);
-    if (self_closing) return;
+    if (role_ == Role::Model) {
+      namespaces(name, prefix, attrs);
+      model_element(name, attrs, owners);
+    }
+    if (self_closing) {
+      if (role_ == Role::Model) scopes_.pop_back();
+      return;
+    }
     if (stack_.size() >= static_cast<std::size_t>(kMax3mfXmlDepth)) {
       refuse(path_, "'" + part_ + "' nests its XML elements deeper than " +
                         std::to_string(kMax3mfXmlDepth) + " levels");
@@ -102,9 +125,58 @@ class PartSink : public XmlSink {
   }
   void end() override {
     if (!stack_.empty()) stack_.pop_back();
+    if (!scopes_.empty()) scopes_.pop_back();
   }
 
  private:
+  using Scope = std::vector<std::pair<std::string, std::string>>;  // prefix, namespace
+
+  const std::string* resolve(const std::string& prefix) const {
+    for (auto s = scopes_.rbegin(); s != scopes_.rend(); ++s) {
+      for (const auto& [p, ns] : *s) {
+        if (p == prefix) return &ns;
+      }
+    }
+    return nullptr;
+  }
+
+  // The element's namespace declarations opened, its prefixes and its attributes' looked
+  // up (one lib3mf cannot resolve stops its reading: "Could not get XML Namespace"), and on
+  // the root the required extensions checked.
+  void namespaces(const std::string& name, const std::string& prefix,
+                  const std::vector<XmlAttr>& attrs) {
+    Scope scope;
+    for (const auto& a : attrs) {
+      if (a.prefix == "xmlns") scope.emplace_back(a.name, a.value);
+    }
+    const bool root = scopes_.empty();
+    scopes_.push_back(std::move(scope));
+    auto& undeclared = counts_.undeclared[index_];
+    const auto use = [&](const std::string& p) {
+      if (!p.empty() && p != "xml" && p != "xmlns" && !resolve(p) && undeclared.size() < 64)
+        undeclared.insert(p);
+    };
+    use(prefix);
+    for (const auto& a : attrs) use(a.prefix);
+    if (!root || name != "model" || !prefix.empty()) return;
+    for (const auto& a : attrs) {
+      if (a.prefixed || a.name != "requiredextensions") continue;
+      std::istringstream words(a.value);
+      for (std::string p; words >> p;) {
+        const std::string* ns = resolve(p);
+        if (!ns) {
+          refuse(path_, "'" + part_ + "' requires the extension of prefix '" + p.substr(0, 40) +
+                            "', which no xmlns:" + p.substr(0, 40) + " declares");
+        }
+        if (!supported_namespace(*ns)) {
+          refuse(path_, "the file requires the 3MF extension " + ns->substr(0, 200) +
+                            " (requiredextensions '" + p.substr(0, 40) +
+                            "'), which Strand does not read");
+        }
+      }
+    }
+  }
+
   void relationship(const std::vector<XmlAttr>& attrs) {
     bool model = false;
     for (const auto& a : attrs)
@@ -174,9 +246,11 @@ class PartSink : public XmlSink {
 
   PackageCounts& counts_;
   std::string part_;
+  std::size_t index_;  // in the archive
   Role role_;
   const std::string& path_;
   std::vector<std::vector<long long>> stack_;  // per open element: the objects it opens
+  std::vector<Scope> scopes_;                  // per open element of a model part
 };
 
 // Component nesting and the objects every build item places (each nested copy counted), from
@@ -268,12 +342,11 @@ struct ZipDiscard {
 struct ZipFileClose {
   void operator()(zip_file_t* f) const { zip_fclose(f); }
 };
-
 }  // namespace
 
 // The archive as libzip (lib3mf's zip library) lists it: stated sizes summed and bounded,
 // then the parts lib3mf reads as XML inflated (bounded by their stated sizes) and tokenized.
-void screen_3mf_package(const std::string& bytes, const std::string& path) {
+void screen_3mf_package(std::string& bytes, const std::string& path) {
   zip_error_t error;
   zip_error_init(&error);
   zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
@@ -307,7 +380,7 @@ void screen_3mf_package(const std::string& bytes, const std::string& path) {
   }
   PackageCounts counts;
   const auto scan = [&](std::size_t i, PartSink::Role role) {
-    PartSink sink(counts, "/" + without_leading_slash(names[i]), role, path);
+    PartSink sink(counts, "/" + without_leading_slash(names[i]), i, role, path);
     XmlTokens tokens(sink);
     std::unique_ptr<zip_file_t, ZipFileClose> file(
         zip_fopen_index(zip.get(), static_cast<zip_uint64_t>(i), 0));
@@ -324,12 +397,15 @@ void screen_3mf_package(const std::string& bytes, const std::string& path) {
       try {
         tokens.feed(buffer.data(), static_cast<std::size_t>(n));
       } catch (const std::length_error&) {
-        refuse(path, "an element in '" + names[i] + "' repeats its attributes");
+        refuse(path, "an element in '" + names[i] +
+                         "' repeats its attributes (or has more than 64 ids, namespace "
+                         "declarations and prefixed attributes)");
       }
       if (tokens.broken()) break;
     }
     if (tokens.broken())
       refuse(path, "'" + names[i] + "' is not well-formed XML as lib3mf reads it");
+    counts.root_name_end[i] = tokens.root_name_end();
   };
   std::vector<char> model(names.size(), 0);
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -355,6 +431,13 @@ void screen_3mf_package(const std::string& bytes, const std::string& path) {
                      std::to_string(kMaxMeshTriangles) + " are accepted");
   }
   check_component_graph(counts, path);
+  std::vector<PrefixDeclarations> declare;
+  for (const auto& [i, prefixes] : counts.undeclared) {
+    if (!prefixes.empty()) declare.push_back({i, sizes[i], prefixes, counts.root_name_end[i]});
+  }
+  if (declare.empty()) return;
+  zip.reset();
+  bytes = with_prefixes_declared(bytes, declare, path);
 }
 
 }  // namespace strand::slicer

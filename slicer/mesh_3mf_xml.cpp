@@ -8,17 +8,20 @@ namespace strand::slicer {
 namespace {
 
 bool space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
-bool kept(const std::string& local) {
+bool kept(const std::string& local, const std::string& prefix) {
   return local == "id" || local == "objectid" || local == "path" || local == "Type" ||
-         local == "Target";
+         local == "Target" || local == "requiredextensions" || local == "xmlns" ||
+         prefix == "xmlns";
 }
-// "p:name" -> "name"; false for two colons (lib3mf refuses them).
-bool local_name(const std::string& qualified, std::string& local, bool& prefixed) {
+// "p:name" -> "name" and "p"; false for two colons (lib3mf refuses them).
+bool local_name(const std::string& qualified, std::string& local, bool& prefixed,
+                std::string& prefix) {
   const auto colon = qualified.find(':');
   if (colon != std::string::npos && qualified.find(':', colon + 1) != std::string::npos)
     return false;
   prefixed = colon != std::string::npos;
   local = prefixed ? qualified.substr(colon + 1) : qualified;
+  prefix = prefixed ? qualified.substr(0, colon) : std::string();
   return true;
 }
 
@@ -33,31 +36,37 @@ void XmlTokens::append(std::string& s, char c, std::size_t cap) {
 }
 
 void XmlTokens::begin_element() {
-  std::string local;
+  std::string local, prefix;
   bool prefixed = false;
-  if (!local_name(name_, local, prefixed)) {
+  if (!local_name(name_, local, prefixed, prefix)) {
     state_ = State::Broken;
     return;
   }
+  if (root_name_end_ == static_cast<std::size_t>(-1)) root_name_end_ = offset_;
   element_ = long_ ? std::string() : local;
+  element_prefix_ = long_ ? std::string() : prefix;
   attrs_.clear();
 }
 
 void XmlTokens::finish_attr() {
-  std::string local;
+  std::string local, prefix;
   bool prefixed = false;
-  if (!local_name(attr_name_, local, prefixed)) {
+  if (!local_name(attr_name_, local, prefixed, prefix)) {
     state_ = State::Broken;
     return;
   }
-  if (!in_pi_ && kept(local)) {
+  if (in_pi_) return;
+  const bool keep = kept(local, prefix);
+  if (keep || prefixed) {
     if (attrs_.size() >= kMaxKeptAttrs) throw std::length_error("attributes");
-    attrs_.push_back({prefixed, local, value_long_ ? std::string(1, '\x01') : value_});
+    attrs_.push_back({prefixed, local,
+                      !keep ? std::string() : value_long_ ? std::string(1, '\x01') : value_,
+                      prefix});
   }
 }
 
 void XmlTokens::finish_start(bool self_closing) {
-  if (!in_pi_) sink_.start(element_, attrs_, self_closing);
+  if (!in_pi_) sink_.start(element_, element_prefix_, attrs_, self_closing);
   in_pi_ = false;
   state_ = State::Text;
 }

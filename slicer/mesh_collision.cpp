@@ -166,6 +166,39 @@ MeshPoint MeshProximity::closest(const Vec3& p) const {
   return out;
 }
 
+std::optional<MeshPoint> MeshProximity::first_hit(const Vec3& from, const Vec3& to) const {
+  std::vector<Primitive::Id> near;
+  impl_->tree.all_intersected_primitives(K::Segment_3(point(from), point(to)),
+                                         std::back_inserter(near));
+  const Vec3 d = to - from;
+  std::optional<MeshPoint> best;
+  for (const auto& id : near) {
+    const int index = static_cast<int>(std::distance(impl_->triangles.cbegin(), id));
+    const auto& c = impl_->corners[static_cast<std::size_t>(index)];
+    // Moller-Trumbore: from + s d = c0 + b1 (c1 - c0) + b2 (c2 - c0).
+    const Vec3 e1 = c[1] - c[0], e2 = c[2] - c[0];
+    const Vec3 h = d.cross(e2);
+    const double det = e1.dot(h);
+    if (std::abs(det) < 1e-15 * e1.norm() * e2.norm() * d.norm()) continue;  // edge-on
+    const Vec3 r = from - c[0];
+    const double b1 = r.dot(h) / det;
+    const Vec3 q = r.cross(e1);
+    const double b2 = d.dot(q) / det;
+    const double s = e2.dot(q) / det;
+    constexpr double kEdge = 1e-9;  // a hit on a shared edge counts for both triangles
+    if (b1 < -kEdge || b2 < -kEdge || b1 + b2 > 1.0 + kEdge || s < 0.0 || s > 1.0) continue;
+    if (best && s * d.norm() >= best->distance_mm) continue;
+    MeshPoint m;
+    m.triangle = index;
+    m.barycentric = Vec3(1.0 - b1 - b2, b1, b2).cwiseMax(0.0);
+    m.barycentric /= m.barycentric.sum();
+    m.point_mm = from + s * d;
+    m.distance_mm = s * d.norm();
+    best = m;
+  }
+  return best;
+}
+
 std::optional<Vec3> MeshProximity::cone_hit(const NozzleCone& cone, const Vec3& tip,
                                             const Vec3& up) const {
   const Frustum f{tip, up.normalized(), cone.tip_radius_mm,

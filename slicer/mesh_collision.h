@@ -39,6 +39,10 @@ class MeshProximity {
 
   MeshPoint closest(const Vec3& p_mm) const;
 
+  // Where the segment from `from_mm` to `to_mm` first meets the mesh (the hit nearest
+  // `from_mm`; distance_mm is measured from it), or nullopt when it misses.
+  std::optional<MeshPoint> first_hit(const Vec3& from_mm, const Vec3& to_mm) const;
+
   // A point of the mesh inside `cone` with its tip at `tip_mm` and its axis `up` (unit, from
   // the tip up the nozzle, against the flow), or nullopt when the mesh stays outside. Exact up
   // to 1e-6 mm: every triangle near the cone is clipped to its length and the frustum's

@@ -13,6 +13,9 @@ namespace strand::slicer {
 // Triangles accepted after reading (files are bounded by kMaxInputBytes before): no input
 // may exhaust memory.
 inline constexpr std::size_t kMaxMeshTriangles = 4'000'000;
+// Vertices a file may declare (PLY, OFF element counts; 3MF placed copies): three per
+// triangle, as in a soup.
+inline constexpr std::size_t kMaxMeshVertices = 3 * kMaxMeshTriangles;
 
 // The mesh as stored in the file (file units, file frame). Throws InputError for a missing,
 // unreadable, unknown-format, empty or too large file, and for non-finite coordinates.

@@ -281,9 +281,7 @@ std::vector<Ring> slice_at(const MeshSlicer& s, double z_mm, ContourStats* stats
   return out;
 }
 
-std::vector<Region> slice_layers(const Mesh& m, double layer_height_mm, int layers,
-                                 ContourStats* stats) {
-  const MeshSlicer slicer(m);
+LayerCuts::LayerCuts(const Mesh& m, double layer_height_mm, int layers) : slicer_(m) {
   // Triangles by their lowest z; a sweep keeps those the plane can still meet.
   std::vector<std::pair<double, double>> span(m.triangles.size());
   std::vector<int> order(m.triangles.size());
@@ -302,23 +300,39 @@ std::vector<Region> slice_layers(const Mesh& m, double layer_height_mm, int laye
   });
   std::vector<int> active;
   std::size_t next = 0;
-  std::vector<Region> out;
-  out.reserve(static_cast<std::size_t>(std::max(layers, 0)));
-  ContourStats total;
-  for (int k = 0; k < layers; ++k) {
-    const double z = nudged(slicer.vertex_z(), (k + 0.5) * layer_height_mm);
+  const std::size_t n = static_cast<std::size_t>(std::max(layers, 0));
+  z_mm_.reserve(n);
+  active_.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double z = nudged(slicer_.vertex_z(), (static_cast<double>(k) + 0.5) * layer_height_mm);
     while (next < order.size() && span[static_cast<std::size_t>(order[next])].first < z) {
       active.push_back(order[next++]);
     }
     std::erase_if(active, [&](int t) { return span[static_cast<std::size_t>(t)].second < z; });
     std::sort(active.begin(), active.end());  // triangle order: the same loops every run
-    std::vector<Segment> segs;
-    Segment seg;
-    for (const int t : active) {
-      if (cut_triangle(m, m.triangles[static_cast<std::size_t>(t)], z, seg)) segs.push_back(seg);
-    }
-    out.push_back(region_from_oriented_loops(loops_of(segs, total)));
+    z_mm_.push_back(z);
+    active_.push_back(active);
   }
+}
+
+Region LayerCuts::cut(int k, ContourStats& stats) const {
+  const std::size_t i = static_cast<std::size_t>(k);
+  const Mesh& m = slicer_.mesh();
+  std::vector<Segment> segs;
+  Segment seg;
+  for (const int t : active_.at(i)) {
+    if (cut_triangle(m, m.triangles[static_cast<std::size_t>(t)], z_mm_[i], seg)) segs.push_back(seg);
+  }
+  return region_from_oriented_loops(loops_of(segs, stats));
+}
+
+std::vector<Region> slice_layers(const Mesh& m, double layer_height_mm, int layers,
+                                 ContourStats* stats) {
+  const LayerCuts cuts(m, layer_height_mm, layers);
+  std::vector<Region> out;
+  out.reserve(static_cast<std::size_t>(cuts.layers()));
+  ContourStats total;
+  for (int k = 0; k < cuts.layers(); ++k) out.push_back(cuts.cut(k, total));
   if (stats) *stats += total;
   return out;
 }

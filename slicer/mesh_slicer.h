@@ -47,4 +47,20 @@ std::vector<Ring> slice_at(const MeshSlicer& slicer, double z_mm, ContourStats* 
 std::vector<Region> slice_layers(const Mesh& m, double layer_height_mm, int layers,
                                  ContourStats* stats = nullptr);
 
+// slice_layers one layer at a time: the triangles each plane meets are found once, in one
+// sweep up the part; then cut(k) gives layer k's region, for any k in any order, from several
+// threads at once (jobs/ cuts the layers in parallel). Same regions as slice_layers.
+class LayerCuts {
+ public:
+  LayerCuts(const Mesh& m, double layer_height_mm, int layers);
+  int layers() const { return static_cast<int>(active_.size()); }
+  // Layer k's region; what the chaining mended is added to `stats` (one per thread).
+  Region cut(int k, ContourStats& stats) const;
+
+ private:
+  MeshSlicer slicer_;
+  std::vector<double> z_mm_;              // each layer's plane, moved off vertices
+  std::vector<std::vector<int>> active_;  // per layer: the triangles it meets, in mesh order
+};
+
 }  // namespace strand::slicer

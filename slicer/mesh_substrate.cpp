@@ -50,6 +50,19 @@ struct MeshSubstrate::Impl {
   Mesh mesh;                                        // welded, workpiece frame
   std::vector<Vec3> normal;                         // per vertex, unit, outward
   std::unique_ptr<MeshProximity> proximity;
+  Vec3 centre = Vec3::Zero();  // of the bounding box
+  double diagonal_mm = 0.0;
+
+  Located located(const MeshPoint& m, double offset, const std::vector<Vec2>& uv) const {
+    Located out;
+    out.base_mm = m.point_mm;
+    out.normal = normal_at(m);
+    out.offset_mm = offset;
+    const auto& t = mesh.triangles[static_cast<std::size_t>(m.triangle)];
+    out.uv_mm =
+        m.barycentric[0] * uv[t[0]] + m.barycentric[1] * uv[t[1]] + m.barycentric[2] * uv[t[2]];
+    return out;
+  }
 
   Vec3 normal_at(const MeshPoint& m) const {
     const auto& t = mesh.triangles[static_cast<std::size_t>(m.triangle)];
@@ -100,6 +113,9 @@ MeshSubstrate::MeshSubstrate(const Mesh& input, const std::string& source)
   }
   for (Vec3& n : s.normal) n = n.norm() > 0 ? Vec3(n.normalized()) : s.facing;
   s.proximity = std::make_unique<MeshProximity>(s.mesh);
+  const Box3 box = bounds(s.mesh);
+  s.centre = (box.min_mm + box.max_mm) / 2.0;
+  s.diagonal_mm = box.size_mm().norm();
 }
 
 MeshSubstrate::~MeshSubstrate() = default;
@@ -173,6 +189,22 @@ MeshSubstrate::Located MeshSubstrate::locate(const Vec3& p) const {
   out.uv_mm =
       m.barycentric[0] * uv[t[0]] + m.barycentric[1] * uv[t[1]] + m.barycentric[2] * uv[t[2]];
   return out;
+}
+
+std::optional<MeshSubstrate::Located> MeshSubstrate::foot_along(const Vec3& p,
+                                                                const Vec3& n) const {
+  const Impl& s = *impl_;
+  const double reach = (p - s.centre).norm() + s.diagonal_mm + 1.0;
+  const Vec3 u = n.normalized();
+  if (const auto below = s.proximity->first_hit(p, p - reach * u))
+    return s.located(*below, below->distance_mm, s.surface->vertex_uv());
+  if (const auto above = s.proximity->first_hit(p, p + reach * u))
+    return s.located(*above, -above->distance_mm, s.surface->vertex_uv());
+  return std::nullopt;
+}
+
+double MeshSubstrate::distance_mm(const Vec3& p) const {
+  return impl_->proximity->closest(p).distance_mm;
 }
 
 std::optional<Vec3> MeshSubstrate::cone_hit(const NozzleCone& cone, const Vec3& tip,

@@ -66,6 +66,11 @@ class MeshSubstrate : public Surface {
     double residual_mm = 0.0;     // |p - (base + offset * normal)|: 0 on an offset surface
   };
   Located locate(const Vec3& p_mm) const;
+  // Where the line through p along `normal` (unit) meets the mesh: the hit nearest p below it
+  // (offset >= 0), else the nearest above it (offset < 0); residual 0. nullopt beside the mesh.
+  std::optional<Located> foot_along(const Vec3& p_mm, const Vec3& normal) const;
+  // Distance from p to the mesh (its nearest triangle), mm.
+  double distance_mm(const Vec3& p_mm) const;
 
   // A point of the mesh inside the nozzle's cone with its tip at `tip_mm` (workpiece frame)
   // and its axis `up` (unit, against the flow), or nullopt.

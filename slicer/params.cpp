@@ -18,6 +18,7 @@ std::string type_rule(ParamType t) {
     case ParamType::Text: return "must be text";
     case ParamType::NumberList: return "must be a list of numbers like 0,90";
     case ParamType::Size2: return "must be a size like 36x36";
+    case ParamType::Switch: return "must be on or off (true, false)";
   }
   return "";
 }
@@ -77,10 +78,51 @@ Normalised paper_of(const ParamDef& d, const std::string& text) {
   return {nlohmann::json({(*size)[0], (*size)[1]}), "", false};
 }
 
+// A graded number (ParamDef::graded): "a..b" -> {"from": a, "to": b}, "a,b,c" or a JSON list
+// -> [a, b, c]; a single value stays a number (so a plain value reads as before).
+std::optional<Normalised> graded_of(const ParamDef& d, const nlohmann::json& v) {
+  if (!d.graded) return std::nullopt;
+  if (v.is_object()) {
+    if (v.size() != 2 || !v.contains("from") || !v.contains("to")) return fail_type(d);
+    const Normalised a = element_of(d, v.at("from")), b = element_of(d, v.at("to"));
+    if (!a.value) return a;
+    if (!b.value) return b;
+    return Normalised{nlohmann::json{{"from", *a.value}, {"to", *b.value}}, "", false};
+  }
+  if (v.is_array()) {
+    Normalised n = numbers_of(d, v, 0);
+    if (n.value && n.value->size() == 1) n.value = n.value->front();
+    return n;
+  }
+  if (!v.is_string()) return std::nullopt;
+  std::string text = v.get<std::string>();
+  const auto dots = text.find("..");
+  if (dots != std::string::npos) {
+    text.replace(dots, 2, ",");
+    Normalised n = from_units(d, parse_quantities(text, d.unit, ','));
+    if (n.value && n.value->size() != 2) return fail_type(d);
+    if (n.value) n.value = nlohmann::json{{"from", (*n.value)[0]}, {"to", (*n.value)[1]}};
+    return n;
+  }
+  if (text.find(',') == std::string::npos) return std::nullopt;
+  return from_units(d, parse_quantities(text, d.unit, ','));
+}
+
+// "on", "true", "yes", "1" and their opposites, in any case.
+Normalised switch_of(const ParamDef& d, const nlohmann::json& v) {
+  if (v.is_boolean()) return {v, "", false};
+  if (!v.is_string()) return fail_type(d);
+  if (match_choice(v.get<std::string>(), {"on", "true", "yes", "1"})) return {true, "", false};
+  if (match_choice(v.get<std::string>(), {"off", "false", "no", "0"})) return {false, "", false};
+  return fail_type(d);
+}
+
 // Normalises a given JSON value to the def's type: numbers as they are, text read with its
 // units into the table's unit.
 Normalised normalise(const ParamDef& d, const nlohmann::json& v) {
+  if (auto g = graded_of(d, v)) return *g;
   switch (d.type) {
+    case ParamType::Switch: return switch_of(d, v);
     case ParamType::Number:
       if (v.is_number()) return {v, "", false};
       if (v.is_string()) {
@@ -130,6 +172,9 @@ Normalised normalise(const ParamDef& d, const nlohmann::json& v) {
 
 std::string value_text(const nlohmann::json& v) {
   if (v.is_number()) return short_number(v.get<double>());
+  if (v.is_object() && v.size() == 2 && v.contains("from") && v.contains("to")) {
+    return value_text(v.at("from")) + ".." + value_text(v.at("to"));
+  }
   if (v.is_string()) return v.get<std::string>();
   if (v.is_array()) {
     std::string s;
@@ -211,7 +256,9 @@ nlohmann::json resolve_params(const ParamTable& table, const nlohmann::json& giv
     }
     auto v = n.value;
     bool ok = true;
-    if (d.type == ParamType::Number || d.type == ParamType::Integer) {
+    if (v->is_structured() && d.graded) {
+      for (const auto& e : *v) ok = ok && in_range(d, e.get<double>());
+    } else if (d.type == ParamType::Number || d.type == ParamType::Integer) {
       ok = in_range(d, v->get<double>());
     } else if (d.type == ParamType::NumberList || d.type == ParamType::Size2) {
       for (const auto& e : *v) ok = ok && in_range(d, e.get<double>());

@@ -16,6 +16,7 @@ enum class ParamType {
   Text,        // free text or a name
   NumberList,  // "0,90" on the CLI, [0, 90] in JSON
   Size2,       // "36x36" on the CLI, [36, 36] or "36x36" in JSON
+  Switch,      // on or off: a bare `--stagger` on the CLI, true or false in JSON
 };
 
 struct ParamDef {
@@ -31,6 +32,9 @@ struct ParamDef {
   std::string default_text;                // shown in help when the default is computed
   std::vector<std::string> choices;        // Text only: allowed values (any case), empty = any
   bool paper = false;                      // Size2 only: also a paper name ("A4 landscape")
+  // Number only: also a graded value, "0.8..1.6" (JSON {"from": 0.8, "to": 1.6}) or a list
+  // "0.8,1.2,1.6" (JSON [0.8, 1.2, 1.6]); one value stays a plain number.
+  bool graded = false;
 };
 
 struct ParamTable {

@@ -11,12 +11,13 @@ set(allowed_postprocess/inspect slicer machines postprocess/plan postprocess/ins
 set(allowed_postprocess/plot    slicer machines postprocess/plot)
 set(allowed_postprocess/preview slicer machines postprocess/plan postprocess/inspect
                                 postprocess/preview)
+set(allowed_postprocess/measure slicer postprocess/measure)
 set(allowed_jobs                slicer machines patterns postprocess/plan postprocess/inspect
                                 postprocess/plot postprocess/preview jobs)
 set(allowed_serve               slicer machines machines/send patterns postprocess/plan
                                 postprocess/inspect postprocess/plot postprocess/preview jobs serve)
 set(rooms slicer machines machines/send patterns postprocess/plan postprocess/inspect
-          postprocess/plot postprocess/preview jobs serve)
+          postprocess/plot postprocess/preview postprocess/measure jobs serve)
 set(failures "")
 foreach(room IN LISTS rooms)
   file(GLOB_RECURSE sources "${SOURCE_DIR}/${room}/*.h" "${SOURCE_DIR}/${room}/*.cpp")

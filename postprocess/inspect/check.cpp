@@ -1,5 +1,5 @@
-// Check of a parsed G-code file: contacts and strands per layer, forbidden arcs, build
-// volume, parse problems; the strand count comes from estimate(), contacts from crossings.
+// The check's report: the whole-program entry points (over check_stream.h) and the report as
+// JSON and text.
 #include "postprocess/inspect/check.h"
 
 #include <algorithm>
@@ -7,9 +7,7 @@
 #include <cstdio>
 
 #include "machines/gcode_format.h"
-#include "machines/kinematics.h"
-#include "machines/plotter_kinematics.h"
-#include "postprocess/plan/estimate.h"
+#include "postprocess/inspect/check_stream.h"
 
 namespace strand::post {
 
@@ -19,7 +17,8 @@ using slicer::Vec3;
 
 bool CheckReport::ok() const {
   return crossing_count() == crossings_allowed && parse_issues.empty() &&
-         arcs_forbidden_total == 0 && outside_volume_total == 0;
+         arcs_forbidden_total == 0 && outside_volume_total == 0 &&
+         !(deposit_moves == 0 && rules.rules == CheckRules::Diw);
 }
 
 std::size_t CheckReport::crossing_count() const {
@@ -35,111 +34,23 @@ std::size_t CheckReport::touch_count() const {
 }
 
 int CheckReport::line_of(std::size_t move) const {
-  return move < move_lines.size() ? move_lines[move] : 0;
+  for (const auto& l : layers) {
+    for (const auto* list : {&l.crossings, &l.touches}) {
+      for (const Contact& c : *list) {
+        if (c.move_a == move) return c.line_a;
+        if (c.move_b == move) return c.line_b;
+      }
+    }
+  }
+  for (const auto* list : {&arcs_forbidden, &outside_volume}) {
+    for (const Finding& f : *list) {
+      if (f.move == move) return f.line;
+    }
+  }
+  return 0;
 }
 
 namespace {
-
-// Points of an arc from `from` to its end that may lie farthest out: its four axis
-// extremes and its point farthest from the origin (delta radius), when within the sweep.
-std::vector<Vec2> arc_extremes(const Vec2& from, const slicer::Move& mv) {
-  const Vec2 c = mv.center_mm, to = mv.end_mm.head<2>();
-  const double r = (from - c).norm();
-  const double sweep = std::abs(slicer::arc_sweep(c, from, to, mv.ccw));
-  std::vector<Vec2> candidates = {c + Vec2(r, 0), c - Vec2(r, 0), c + Vec2(0, r), c - Vec2(0, r)};
-  if (c.norm() > 0) candidates.push_back(c + r * c.normalized());
-  std::vector<Vec2> out;
-  for (const Vec2& p : candidates) {
-    if (std::abs(slicer::arc_sweep(c, from, p, mv.ccw)) <= sweep) out.push_back(p);
-  }
-  return out;
-}
-
-void add_finding(std::vector<Finding>& list, std::size_t& total, Finding f) {
-  if (list.size() < CheckReport::kMaxFindings) list.push_back(std::move(f));
-  ++total;
-}
-
-void check_moves(const ParsedGcode& parsed, const machines::MachineProfile& m, CheckReport& r) {
-  const auto& moves = parsed.program.moves;
-  Vec3 at = parsed.program.start_mm;
-  for (std::size_t i = 0; i < moves.size(); ++i) {
-    const auto& mv = moves[i];
-    if (mv.kind == MoveKind::Raw || mv.kind == MoveKind::Dwell) continue;
-    const int line = r.line_of(i);
-    if (mv.is_arc && !m.arcs) {
-      add_finding(r.arcs_forbidden, r.arcs_forbidden_total,
-                  {line, i, mv.end_mm, "G2/G3 arc, but " + m.name + " does not accept arcs"});
-    }
-    if (auto why = machines::outside_reason(m.volume, mv.end_mm)) {
-      add_finding(r.outside_volume, r.outside_volume_total, {line, i, mv.end_mm, *why});
-    } else if (mv.is_arc) {
-      for (const Vec2& p : arc_extremes(at.head<2>(), mv)) {
-        const Vec3 q(p.x(), p.y(), mv.end_mm.z());
-        if (auto bulge = machines::outside_reason(m.volume, q)) {
-          add_finding(r.outside_volume, r.outside_volume_total, {line, i, q, *bulge});
-          break;
-        }
-      }
-    }
-    at = mv.end_mm;
-  }
-}
-
-// A pen plotter writes its own axes (cable lengths, R and theta); read them back to paper
-// millimetres so contacts and reach are judged where the pen draws.
-ParsedGcode to_paper(const ParsedGcode& parsed, const machines::Plotter& plotter) {
-  ParsedGcode paper = parsed;
-  auto map = [&](Vec3& p) {
-    const Vec2 q = machines::to_paper(plotter.setup, p.head<2>());
-    p.x() = q.x();
-    p.y() = q.y();
-  };
-  map(paper.program.start_mm);
-  for (auto& mv : paper.program.moves) map(mv.end_mm);
-  return paper;
-}
-
-void check_reach(const ParsedGcode& paper, const machines::MachineProfile& m, CheckReport& r) {
-  const auto& moves = paper.program.moves;
-  for (std::size_t i = 0; i < moves.size(); ++i) {
-    const auto& mv = moves[i];
-    if (mv.kind != MoveKind::Deposit && mv.kind != MoveKind::Travel) continue;
-    if (auto why = machines::unreachable_reason(m.plotter, mv.end_mm.head<2>())) {
-      add_finding(r.outside_volume, r.outside_volume_total, {r.line_of(i), i, mv.end_mm, *why});
-    }
-  }
-}
-
-// Whether the rules let these two moves cross (see CheckRules).
-bool crossing_allowed(const slicer::MotionProgram& p, const Contact& c, CheckRules rules) {
-  if (rules == CheckRules::Plot) return true;
-  if (rules == CheckRules::Diw) return false;
-  return p.moves[c.move_a].feature != slicer::Feature::Wall ||
-         p.moves[c.move_b].feature != slicer::Feature::Wall;
-}
-
-// One row per layer of the program; a row -1 only when deposits before the first layer
-// have contacts.
-void fill_layers(const ParsedGcode& parsed, const CheckOptions& o, CheckReport& r) {
-  const CheckRules rules = r.rules.rules;
-  const Estimate est = estimate(parsed.program);
-  for (const auto& le : est.layers) r.layers.push_back({le.layer, le.z_mm, le.strands, {}, {}});
-  const ContactReport contacts = find_contacts(parsed.program, o.arc_tolerance_mm, o.touch_mm);
-  const bool before_first = std::any_of(contacts.crossings.begin(), contacts.crossings.end(),
-                                        [](const Contact& c) { return c.layer < 0; }) ||
-                            std::any_of(contacts.touches.begin(), contacts.touches.end(),
-                                        [](const Contact& c) { return c.layer < 0; });
-  if (before_first) r.layers.insert(r.layers.begin(), {-1, parsed.program.start_mm.z(), 0, {}, {}});
-  auto row = [&](int layer) -> LayerCheck& {
-    return r.layers[static_cast<std::size_t>(std::max(layer, -1) + (before_first ? 1 : 0))];
-  };
-  for (const auto& c : contacts.crossings) {
-    row(c.layer).crossings.push_back(c);
-    if (crossing_allowed(parsed.program, c, rules)) ++r.crossings_allowed;
-  }
-  for (const auto& c : contacts.touches) row(c.layer).touches.push_back(c);
-}
 
 std::string xy(const Vec2& p) {
   return "(" + machines::fmt_xyz(p.x()) + ", " + machines::fmt_xyz(p.y()) + ")";
@@ -150,11 +61,8 @@ std::string xyz(const Vec3& p) {
          machines::fmt_xyz(p.z()) + ")";
 }
 
-nlohmann::json contact_json(const Contact& c, const CheckReport& r) {
-  return {{"x_mm", c.at_mm.x()},
-          {"y_mm", c.at_mm.y()},
-          {"line_a", r.line_of(c.move_a)},
-          {"line_b", r.line_of(c.move_b)}};
+nlohmann::json contact_json(const Contact& c) {
+  return {{"x_mm", c.at_mm.x()}, {"y_mm", c.at_mm.y()}, {"line_a", c.line_a}, {"line_b", c.line_b}};
 }
 
 nlohmann::json finding_json(const Finding& f) {
@@ -168,41 +76,20 @@ nlohmann::json finding_json(const Finding& f) {
 }  // namespace
 
 CheckReport check_parsed(const ParsedGcode& parsed, const CheckOptions& o) {
-  CheckReport r;
-  r.moves = parsed.program.moves.size();
-  r.move_lines = parsed.move_lines;
-  r.parse_issues = parsed.issues;
-  r.notes = parsed.notes;
-  r.rules = o.rules ? *o.rules : default_rules(o.machine, {});
-  r.pen_drawing = r.rules.rules == CheckRules::Plot;
-  if (o.machine && o.machine->plotter.enabled) {
-    r.machine = o.machine->name;
-    const ParsedGcode paper = to_paper(parsed, o.machine->plotter);
-    fill_layers(paper, o, r);
-    check_reach(paper, *o.machine, r);
-    return r;
-  }
-  fill_layers(parsed, o, r);
-  if (o.machine) {
-    r.machine = o.machine->name;
-    check_moves(parsed, *o.machine, r);
-  }
-  return r;
-}
-
-CheckReport check_gcode(std::string_view text, const CheckOptions& o) {
-  CheckInput in = read_for_check(text, o.machine, o.rules);
+  const RulesChoice rules = o.rules ? *o.rules : default_rules(o.machine, {});
   CheckOptions with_rules = o;
-  with_rules.rules = in.rules;
-  return check_parsed(in.parsed, with_rules);
+  with_rules.rules = rules;
+  CheckStream stream(with_rules);
+  stream.add(parsed.program, parsed.move_lines, 0);
+  return stream.finish(parsed, rules);
 }
 
 nlohmann::json to_json(const CheckReport& r) {
   nlohmann::json layers = nlohmann::json::array();
   for (const auto& l : r.layers) {
     nlohmann::json cross = nlohmann::json::array(), touch = nlohmann::json::array();
-    for (const auto& c : l.crossings) cross.push_back(contact_json(c, r));
-    for (const auto& c : l.touches) touch.push_back(contact_json(c, r));
+    for (const auto& c : l.crossings) cross.push_back(contact_json(c));
+    for (const auto& c : l.touches) touch.push_back(contact_json(c));
     layers.push_back({{"layer", l.layer},
                       {"z_mm", l.z_mm},
                       {"strands", l.strands},
@@ -222,7 +109,10 @@ nlohmann::json to_json(const CheckReport& r) {
           {"rules_why", r.rules.why},
           {"pen_drawing", r.pen_drawing},
           {"moves", r.moves},
+          {"deposit_moves", r.deposit_moves},
           {"layers", layers},
+          {"layers_without_deposit", r.layers_without_deposit},
+          {"layers_without_deposit_index", r.layers_without_deposit_index},
           {"crossings", r.crossing_count()},
           {"crossings_allowed", r.crossings_allowed},
           {"touches", r.touch_count()},
@@ -293,7 +183,7 @@ void list_contacts(const CheckReport& r, bool crossings, std::string& out) {
       if (listed++ < kTextListed) {
         out += std::string(crossings ? "  crossing" : "  touch") + " in layer " +
                std::to_string(l.layer) + " at " + xy(c.at_mm) + " mm: lines " +
-               std::to_string(r.line_of(c.move_a)) + " and " + std::to_string(r.line_of(c.move_b)) +
+               std::to_string(c.line_a) + " and " + std::to_string(c.line_b) +
                "\n";
       }
       ++total;
@@ -310,6 +200,30 @@ void list_findings(const std::vector<Finding>& list, std::size_t total, std::str
   if (total > kTextListed) out += "  ... and " + std::to_string(total - kTextListed) + " more\n";
 }
 
+// "2 layers with moves but no deposit, not counted as layers: 5, 6" and, for a file that
+// deposits nothing, the line that says so (a failure under the diw rules).
+std::string without_deposit_text(const CheckReport& r) {
+  std::string out;
+  if (r.layers_without_deposit > 0) {
+    const bool one = r.layers_without_deposit == 1;
+    out += std::to_string(r.layers_without_deposit) +
+           (one ? " layer with moves but no deposit, not counted as a layer: "
+                : " layers with moves but no deposit, not counted as layers: ");
+    const auto& index = r.layers_without_deposit_index;
+    for (std::size_t i = 0; i < index.size() && i < kTextListed; ++i)
+      out += (i ? ", " : "") + std::to_string(index[i]);
+    out += r.layers_without_deposit > kTextListed ? ", ...\n" : "\n";
+  }
+  if (r.deposit_moves == 0) {
+    out += "no deposit: not one of the " + std::to_string(r.moves) +
+           " moves deposits (no E growing, no pen down)" +
+           (r.rules.rules == CheckRules::Diw ? "" : " (said, not failed, under " +
+                                                        to_string(r.rules.rules) + " rules)") +
+           "\n";
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string to_text(const CheckReport& r) {
@@ -318,6 +232,7 @@ std::string to_text(const CheckReport& r) {
                     (r.machine.empty() ? ", no machine given (bounds and arcs not checked)"
                                        : ", machine " + r.machine) +
                     "\nrules " + to_string(r.rules.rules) + ": " + r.rules.why + "\n";
+  out += without_deposit_text(r);
   out += layer_table(r);
   out += crossing_heading(r);
   list_contacts(r, true, out);

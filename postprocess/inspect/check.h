@@ -45,6 +45,10 @@ struct CheckInput {
 // M3/M5 alone stay diw (a GRBL dispenser switches the same way).
 CheckInput read_for_check(std::string_view gcode_text, const machines::MachineProfile* machine,
                           const std::optional<RulesChoice>& given);
+// The rules once the file is read: `chosen` (from `given` or default_rules), except that a
+// file checked without rules and machine that lifts a pen servo is a drawing.
+RulesChoice rules_after_reading(const RulesChoice& chosen, const std::optional<RulesChoice>& given,
+                                const machines::MachineProfile* machine, const ParsedGcode& parsed);
 
 struct CheckOptions {
   double arc_tolerance_mm = 0.01;  // chord error when arcs are flattened for the contact search
@@ -54,6 +58,7 @@ struct CheckOptions {
   std::optional<RulesChoice> rules;
 };
 
+// A layer with at least one deposit (layers without are counted apart, see CheckReport).
 struct LayerCheck {
   int layer = 0;  // index as in ;LAYER:n; -1 for deposits before the first layer
   double z_mm = 0.0;
@@ -61,7 +66,7 @@ struct LayerCheck {
   std::vector<Contact> crossings, touches;
 };
 
-// One problem tied to a move: where it is and why.
+// One problem tied to a move: where it is and why (`what` is the checker's own words).
 struct Finding {
   int line = 0;          // 1-based line in the G-code
   std::size_t move = 0;  // index into the parsed MotionProgram::moves
@@ -78,8 +83,7 @@ struct CheckReport {
   std::size_t arcs_forbidden_total = 0;  // the vectors keep the first kMaxFindings only
   std::size_t outside_volume_total = 0;
   std::size_t moves = 0;
-  std::string machine;          // profile name, empty when none was given
-  std::vector<int> move_lines;  // G-code line of each parsed move
+  std::string machine;  // profile name, empty when none was given
   RulesChoice rules;
   // Checked as a pen drawing (plot rules): strokes crossing is drawing content, not a defect,
   // so crossings are listed but do not fail the check. With a plotter profile coordinates
@@ -88,16 +92,26 @@ struct CheckReport {
   // Crossings the rules allow (fdm: at least one side is not a wall; plot: all); counted in
   // crossing_count(), not failures.
   std::size_t crossings_allowed = 0;
+  // Moves that deposit (E grows, or the pen is down); none fails the diw rules (an empty
+  // print), and is said under the others.
+  std::size_t deposit_moves = 0;
+  // Layers the file marks or moves through without depositing (a travel-only last layer):
+  // not rows of `layers`, not counted as layers; their indices, the first kMaxFindings.
+  std::size_t layers_without_deposit = 0;
+  std::vector<int> layers_without_deposit_index;
 
   static constexpr std::size_t kMaxFindings = 1000;
-  // False on crossings the rules forbid, forbidden arcs, outside moves and parse issues;
-  // touches and notes are fine.
+  // False on crossings the rules forbid, forbidden arcs, outside moves, parse issues and, under
+  // the diw rules, a file that deposits nothing; touches and notes are fine.
   bool ok() const;
   std::size_t crossing_count() const;
   std::size_t touch_count() const;
-  int line_of(std::size_t move) const;  // 0 when unknown
+  // The G-code line of a move a contact or finding names (their line fields); 0 for others.
+  int line_of(std::size_t move) const;
 };
 
+// Reads the text a layer at a time (check_stream.h), checking each layer as it comes:
+// memory holds one layer's moves, not the file's.
 CheckReport check_gcode(std::string_view gcode_text, const CheckOptions& options);
 // Same, on an already parsed file (the SVG preview reuses the parsed program).
 CheckReport check_parsed(const ParsedGcode& parsed, const CheckOptions& options);

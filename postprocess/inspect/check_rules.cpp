@@ -60,9 +60,15 @@ CheckInput read_for_check(std::string_view text, const machines::MachineProfile*
   in.parsed =
       in.rules.rules == CheckRules::Plot ? parse_drawing(text, pen) : parse_gcode(text, pen);
   // parse_drawing reads a file with pen commands as parse_gcode does: no second reading.
-  if (!given && !machine && in.rules.rules == CheckRules::Diw && in.parsed.pen_servo)
-    in.rules = {CheckRules::Plot, "the file lifts a pen servo (M300 S or M280 S)"};
+  in.rules = rules_after_reading(in.rules, given, machine, in.parsed);
   return in;
+}
+
+RulesChoice rules_after_reading(const RulesChoice& chosen, const std::optional<RulesChoice>& given,
+                                const machines::MachineProfile* machine, const ParsedGcode& parsed) {
+  if (!given && !machine && chosen.rules == CheckRules::Diw && parsed.pen_servo)
+    return {CheckRules::Plot, "the file lifts a pen servo (M300 S or M280 S)"};
+  return chosen;
 }
 
 }  // namespace strand::post

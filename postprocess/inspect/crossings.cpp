@@ -18,53 +18,7 @@ using slicer::Vec2;
 
 namespace {
 
-struct Seg {
-  Vec2 a, b;
-  std::size_t move;  // source move
-  long strand;       // strand id within the program
-  long index;        // position within its strand (consecutive pieces differ by 1)
-};
-
-struct LayerSegs {
-  int layer;
-  std::vector<Seg> segs;
-};
-
-// Flattens deposits into per-layer segment lists with strand ids.
-std::vector<LayerSegs> collect(const slicer::MotionProgram& p, double tol) {
-  std::vector<LayerSegs> out;
-  slicer::Vec3 at = p.start_mm;
-  long strand = -1, index = 0;
-  bool depositing = false;
-  int layer = -2;
-  for (std::size_t i = 0; i < p.moves.size(); ++i) {
-    const auto& mv = p.moves[i];
-    if (mv.kind == slicer::MoveKind::Raw || mv.kind == slicer::MoveKind::Dwell) continue;
-    if (mv.layer != layer) {
-      layer = mv.layer;
-      depositing = false;
-      out.push_back({layer, {}});
-    }
-    if (mv.kind != slicer::MoveKind::Deposit) {
-      if ((mv.end_mm - at).norm() > 0) depositing = false;
-      at = mv.end_mm;
-      continue;
-    }
-    if (!depositing) ++strand, index = 0;
-    depositing = true;
-    Vec2 from = at.head<2>();
-    if (mv.is_arc) {
-      for (const Vec2& q : segment_arc(from, mv.center_mm, mv.end_mm.head<2>(), mv.ccw, tol)) {
-        out.back().segs.push_back({from, q, i, strand, index++});
-        from = q;
-      }
-    } else if ((mv.end_mm.head<2>() - from).norm() > 0) {
-      out.back().segs.push_back({from, mv.end_mm.head<2>(), i, strand, index++});
-    }
-    at = mv.end_mm;
-  }
-  return out;
-}
+using Seg = ContactStream::Seg;
 
 bool adjacent(const Seg& s, const Seg& t) {
   return s.strand == t.strand && std::abs(s.index - t.index) == 1;
@@ -111,8 +65,7 @@ SegBox box_of(const Seg& s, double pad) {
   return SegBox(lo, hi, &s);
 }
 
-void check_layer(const LayerSegs& L, double touch, ContactReport& out) {
-  const auto& segs = L.segs;
+void check_layer(int layer, const std::vector<Seg>& segs, double touch, ContactReport& out) {
   if (segs.size() < 2) return;
   // Boxes grown by the whole touch distance: a superset of the pairs test_pair accepts.
   std::vector<SegBox> boxes;
@@ -129,24 +82,74 @@ void check_layer(const LayerSegs& L, double touch, ContactReport& out) {
   for (const Found& f : found) {
     const Seg& s = segs[f.i];
     const Seg& t = segs[f.j];
+    const bool walls = s.wall && t.wall;
     if (f.kind == slicer::Contact::Crossing) {
-      out.crossings.push_back(
-          {L.layer, slicer::crossing_point(s.a, s.b, t.a, t.b), s.move, t.move});
+      out.crossings.push_back({layer, slicer::crossing_point(s.a, s.b, t.a, t.b), s.move, t.move,
+                               s.line, t.line, walls});
     } else {
-      out.touches.push_back({L.layer, touch_point(s, t, touch), s.move, t.move});
+      out.touches.push_back(
+          {layer, touch_point(s, t, touch), s.move, t.move, s.line, t.line, walls});
     }
   }
 }
 
+bool by_move(const Contact& a, const Contact& b) {
+  return std::tie(a.layer, a.move_a, a.move_b, a.at_mm.x(), a.at_mm.y()) <
+         std::tie(b.layer, b.move_a, b.move_b, b.at_mm.x(), b.at_mm.y());
+}
+
 }  // namespace
+
+ContactStream::ContactStream(double tol, double touch, const slicer::Vec3& start_mm)
+    : tol_(tol), touch_(touch), at_(start_mm) {}
+
+// Flattens deposits into the layer's segments with strand ids; a new layer first searches
+// the one before.
+void ContactStream::add(const slicer::Move& mv, std::size_t move, int line, ContactReport& out) {
+  if (mv.kind == slicer::MoveKind::Raw || mv.kind == slicer::MoveKind::Dwell) return;
+  if (mv.layer != layer_) {
+    search_layer(out);
+    layer_ = mv.layer;
+    depositing_ = false;
+  }
+  if (mv.kind != slicer::MoveKind::Deposit) {
+    if ((mv.end_mm - at_).norm() > 0) depositing_ = false;
+    at_ = mv.end_mm;
+    return;
+  }
+  if (!depositing_) ++strand_, index_ = 0;
+  depositing_ = true;
+  const bool wall = mv.feature == slicer::Feature::Wall;
+  Vec2 from = at_.head<2>();
+  if (mv.is_arc) {
+    for (const Vec2& q : segment_arc(from, mv.center_mm, mv.end_mm.head<2>(), mv.ccw, tol_)) {
+      segs_.push_back({from, q, move, strand_, index_++, line, wall});
+      from = q;
+    }
+  } else if ((mv.end_mm.head<2>() - from).norm() > 0) {
+    segs_.push_back({from, mv.end_mm.head<2>(), move, strand_, index_++, line, wall});
+  }
+  at_ = mv.end_mm;
+}
+
+void ContactStream::search_layer(ContactReport& out) {
+  const std::size_t crossings = out.crossings.size(), touches = out.touches.size();
+  check_layer(layer_, segs_, touch_, out);
+  std::stable_sort(out.crossings.begin() + static_cast<std::ptrdiff_t>(crossings),
+                   out.crossings.end(), by_move);
+  std::stable_sort(out.touches.begin() + static_cast<std::ptrdiff_t>(touches), out.touches.end(),
+                   by_move);
+  segs_.clear();
+}
+
+void ContactStream::finish(ContactReport& out) { search_layer(out); }
 
 ContactReport find_contacts(const slicer::MotionProgram& p, double tol, double touch) {
   ContactReport out;
-  for (const auto& layer : collect(p, tol)) check_layer(layer, touch, out);
-  auto by_move = [](const Contact& a, const Contact& b) {
-    return std::tie(a.layer, a.move_a, a.move_b, a.at_mm.x(), a.at_mm.y()) <
-           std::tie(b.layer, b.move_a, b.move_b, b.at_mm.x(), b.at_mm.y());
-  };
+  ContactStream stream(tol, touch, p.start_mm);
+  for (std::size_t i = 0; i < p.moves.size(); ++i) stream.add(p.moves[i], i, 0, out);
+  stream.finish(out);
+  // Layers in program order are sorted already; a program that returns to a layer is not.
   std::stable_sort(out.crossings.begin(), out.crossings.end(), by_move);
   std::stable_sort(out.touches.begin(), out.touches.end(), by_move);
   return out;

@@ -3,6 +3,7 @@
 // collinear overlap). O(n log^2 n + k) per layer for n segments and k box overlaps.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "slicer/motion.h"
@@ -14,11 +15,44 @@ struct Contact {
   slicer::Vec2 at_mm = slicer::Vec2::Zero();
   std::size_t move_a = 0;  // indices into MotionProgram::moves
   std::size_t move_b = 0;
+  int line_a = 0, line_b = 0;  // G-code lines of the two moves, when the search was told them
+  bool walls = false;          // both moves are walls (FDM rules let any other pair cross)
 };
 
 struct ContactReport {
   std::vector<Contact> crossings;
   std::vector<Contact> touches;
+};
+
+// The search fed one move at a time, in program order: only the current layer's segments are
+// held. Each layer is searched when a move of another layer arrives (or at finish()), and its
+// contacts are appended to `out`, sorted as find_contacts sorts them. Arcs are flattened with
+// `arc_tolerance_mm`; segments closer than `touch_mm` touch.
+class ContactStream {
+ public:
+  ContactStream(double arc_tolerance_mm, double touch_mm, const slicer::Vec3& start_mm);
+  // `move` is the move's index in the whole program, `line` its G-code line (0: unknown).
+  void add(const slicer::Move& mv, std::size_t move, int line, ContactReport& out);
+  void finish(ContactReport& out);
+
+  struct Seg {
+    slicer::Vec2 a, b;
+    std::size_t move;     // source move
+    std::int64_t strand;  // strand id within the program
+    std::int64_t index;   // position within its strand (consecutive pieces differ by 1)
+    int line;
+    bool wall;
+  };
+
+ private:
+  void search_layer(ContactReport& out);
+
+  double tol_, touch_;
+  slicer::Vec3 at_;
+  std::int64_t strand_ = -1, index_ = 0;
+  bool depositing_ = false;
+  int layer_ = -2;  // the layer whose segments segs_ holds; -2 before the first move
+  std::vector<Seg> segs_;
 };
 
 // Arcs are flattened with `arc_tolerance_mm`; segments closer than `touch_mm` touch.

@@ -22,8 +22,41 @@ Reader::Reader(std::string_view text, const PenReading& pen) : text_(text), pen_
   out_.has_e = has_e_;
 }
 
+Reader::Reader(const GcodeScan& scan, const PenReading& pen) : pen_(pen) {
+  has_markers_ = scan.has_markers;
+  has_e_ = scan.has_e;
+  out_.has_e = has_e_;
+}
+
 ParsedGcode Reader::run() {
-  ParsedGcode out = has_o_words(text_) ? run_indexed() : run_streaming();
+  if (has_o_words(text_)) {
+    out_ = run_indexed();  // it hands the reading back whole
+  } else {
+    run_streaming();
+  }
+  return finish();
+}
+
+void Reader::feed(std::string_view raw_line) {
+  if (stopped_) return;
+  line(trim(raw_line), ++fed_lines_);
+}
+
+void Reader::flush() {
+  if (!sink_) return;
+  (*sink_)(out_, first_move_);
+  first_move_ += out_.program.moves.size();
+  out_.program.moves.clear();
+  out_.program.texts.clear();
+  out_.program.dwells_s.clear();
+  out_.move_lines.clear();
+  out_.arc_lines.clear();
+  out_.a_deg.clear();
+  out_.e_step.clear();
+}
+
+ParsedGcode Reader::finish() {
+  ParsedGcode& out = out_;
   if (spindle_line_ && plunge_line_ && !has_e_) {
     out.issues.push_back(
         {plunge_line_, "milling program: the spindle turns (M" + std::to_string(spindle_m_) + " S" +
@@ -33,42 +66,47 @@ ParsedGcode Reader::run() {
                            std::to_string(plunge_line_) +
                            "): a subtractive program, not a deposition or drawing toolpath"});
   }
-  return out;
+  flush();
+  return std::move(out);
+}
+
+bool Reader::line_has_o_word(std::string_view raw_line) {
+  const std::string_view l = trim(raw_line);
+  return !l.empty() && (l[0] == 'O' || l[0] == 'o' || l[0] == 'N' || l[0] == 'n') && o_word(l);
 }
 
 bool Reader::has_o_words(std::string_view t) {
   for (std::size_t pos = 0; pos < t.size();) {
     std::size_t nl = t.find('\n', pos);
     if (nl == std::string_view::npos) nl = t.size();
-    const std::string_view l = trim(t.substr(pos, nl - pos));
-    if (!l.empty() && (l[0] == 'O' || l[0] == 'o' || l[0] == 'N' || l[0] == 'n') && o_word(l))
-      return true;
+    if (line_has_o_word(t.substr(pos, nl - pos))) return true;
     pos = nl + 1;
   }
   return false;
 }
 
-ParsedGcode Reader::run_streaming() {
-  // One move per line at most: reserving avoids re-copying a million moves while growing.
-  const auto lines = static_cast<std::size_t>(std::count(text_.begin(), text_.end(), '\n')) + 1;
-  out_.program.moves.reserve(lines);
-  out_.move_lines.reserve(lines);
+void Reader::run_streaming() {
+  if (!sink_) {
+    // One move per line at most: reserving avoids re-copying a million moves while growing.
+    const auto lines = static_cast<std::size_t>(std::count(text_.begin(), text_.end(), '\n')) + 1;
+    out_.program.moves.reserve(lines);
+    out_.move_lines.reserve(lines);
+  }
   std::size_t pos = 0;
-  int line_no = 0;
   while (pos <= text_.size()) {
     const std::size_t nl = text_.find('\n', pos);
     const std::size_t end = nl == std::string_view::npos ? text_.size() : nl;
-    ++line_no;
-    line(trim(text_.substr(pos, end - pos)), line_no);
+    feed(text_.substr(pos, end - pos));
     if (nl == std::string_view::npos || stopped_) break;
     pos = nl + 1;
   }
-  return std::move(out_);
 }
 
 void Reader::words(const Words& w, std::string_view s, int n) {
   if (w.bad_number)
-    out_.issues.push_back({n, "non-finite or malformed number in '" + std::string(s) + "'"});
+    out_.issues.push_back({n, "non-finite or malformed number in '" +
+                                  std::string(s.substr(0, kQuotedLineBytes)) +
+                                  (s.size() > kQuotedLineBytes ? "...'" : "'")});
   if (w.count == 0) return;
   const char cmd = w.letter[0];
   // G and M numbers are small; a huge one ("G1e12") names no command and would not fit int.
@@ -78,16 +116,24 @@ void Reader::words(const Words& w, std::string_view s, int n) {
   if (cmd == 'M') m_code(code, w, n);
 }
 
-bool Reader::scan_has_e(std::string_view t) {
-  for (std::size_t i = t.find('E'); i != std::string_view::npos; i = t.find('E', i + 1)) {
-    if (i == 0 || (t[i - 1] != ' ' && t[i - 1] != '\t')) continue;
-    const std::size_t ls = t.rfind('\n', i) + 1;
-    const std::size_t semi = t.find(';', ls);
-    if (semi != std::string_view::npos && semi < i) continue;
-    if (t[ls] != 'G') continue;
+bool Reader::line_has_e(std::string_view l) {
+  if (l.empty() || l[0] != 'G') return false;
+  const std::size_t semi = l.find(';');
+  for (std::size_t i = l.find('E'); i != std::string_view::npos && i < semi; i = l.find('E', i + 1)) {
+    if (l[i - 1] != ' ' && l[i - 1] != '\t') continue;
     double v = 0;
-    auto r = std::from_chars(t.data() + i + 1, t.data() + t.size(), v);
+    auto r = std::from_chars(l.data() + i + 1, l.data() + l.size(), v);
     if (r.ec == std::errc() && v != 0.0) return true;
+  }
+  return false;
+}
+
+bool Reader::scan_has_e(std::string_view t) {
+  for (std::size_t pos = 0; pos <= t.size();) {
+    std::size_t nl = t.find('\n', pos);
+    if (nl == std::string_view::npos) nl = t.size();
+    if (line_has_e(t.substr(pos, nl - pos))) return true;
+    pos = nl + 1;
   }
   return false;
 }
@@ -150,6 +196,7 @@ void Reader::pen_colour(std::string_view c) {
 }
 
 void Reader::new_layer(std::optional<double> z) {
+  flush();  // every layer before this one is final now
   out_.program.layers.push_back({z.value_or(pos_.z()), 0.0});
   layer_z_known_ = z.has_value();
   layer_ = static_cast<int>(out_.program.layers.size()) - 1;
@@ -228,6 +275,7 @@ void Reader::dwell(const Words& w, int n) {
   if (auto s = w.get('S')) seconds = *s;
   if (auto p = w.get('P')) seconds = *p / 1000.0;
   slicer::push_dwell(out_.program, seconds, pos_, layer_);
+  ++moves_read_;
   out_.move_lines.push_back(n);  // one line per move, dwells included
   if (has_a_) out_.a_deg.push_back(a_), out_.e_step.push_back(0.0);
 }
@@ -271,7 +319,7 @@ void Reader::motion(int code, const Words& w, int n) {
   out_.program.moves.push_back(std::move(mv));
   out_.move_lines.push_back(n);
   if (has_a_) out_.a_deg.push_back(a_), out_.e_step.push_back(de);
-  if (out_.program.moves.size() == 1) out_.program.start_mm = pos_;
+  if (++moves_read_ == 1) out_.program.start_mm = pos_;
   pos_ = target;
   marker_pending_ = false;
 }
@@ -340,6 +388,43 @@ void Reader::bound_arc(Move& mv, int n) {
 
 ParsedGcode parse_gcode(std::string_view text, const PenReading& pen) {
   return gcode::Reader(text, pen).run();
+}
+
+ParsedGcode parse_gcode_layers(std::string_view text, const PenReading& pen,
+                               const PieceSink& sink) {
+  gcode::Reader reader(text, pen);
+  reader.set_sink(&sink);
+  return reader.run();
+}
+
+ParsedGcode parse_gcode_layers(const LineSource& lines, const GcodeScan& scan,
+                               const PenReading& pen, const PieceSink& sink) {
+  gcode::Reader reader(scan, pen);
+  reader.set_sink(&sink);
+  lines([&reader](std::string_view l) { reader.feed(l); });
+  return reader.finish();
+}
+
+void GcodeScan::add_line(std::string_view l) {
+  if (head.size() < kHeadBytes) {
+    head.append(l.substr(0, kHeadBytes - head.size()));
+    if (head.size() < kHeadBytes) head += '\n';
+  }
+  has_markers = has_markers || l.find(";LAYER") != std::string_view::npos;
+  rotary = rotary || l.find(";ROTARY_AXIS:") != std::string_view::npos;
+  has_e = has_e || gcode::Reader::line_has_e(l);
+  has_o_words = has_o_words || gcode::Reader::line_has_o_word(l);
+}
+
+GcodeScan scan_gcode(std::string_view text) {
+  GcodeScan scan;
+  for (std::size_t pos = 0; pos <= text.size();) {
+    std::size_t nl = text.find('\n', pos);
+    if (nl == std::string_view::npos) nl = text.size();
+    scan.add_line(text.substr(pos, nl - pos));
+    pos = nl + 1;
+  }
+  return scan;
 }
 
 }  // namespace strand::post

@@ -2,6 +2,8 @@
 // problems found while reading (inch units, non-finite numbers, arcs).
 #pragma once
 
+#include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -65,6 +67,48 @@ inline constexpr int kMaxPens = 64;
 // and pen machines) while the pen, if the file lifts one (M300 S, M280 S, M3/M5 read through `pen`,
 // or z above pen.z_down_max_mm), is down.
 ParsedGcode parse_gcode(std::string_view text, const PenReading& pen = {});
+
+// What a reading must know of the whole file before its first line (a first pass over a file
+// read line by line): whether layers are marked, whether E tells deposits, whether it is an
+// RS274NGC program with O-words (read from its whole text), and its first kHeadBytes.
+struct GcodeScan {
+  bool has_markers = false;  // ";LAYER" anywhere
+  bool has_e = false;        // as parse_gcode decides it
+  bool has_o_words = false;
+  bool rotary = false;  // ";ROTARY_AXIS:" anywhere (curved_files.h)
+  std::string head;
+  static constexpr std::size_t kHeadBytes = 4096;
+  void add_line(std::string_view raw_line);  // each line in order, without its '\n'
+};
+GcodeScan scan_gcode(std::string_view text);
+
+// A reading handed over layer by layer. `piece` holds the moves read since the last call
+// (program.moves with move_lines, dwells, texts, a_deg, e_step, arc_lines), all layers so
+// far in program.layers (each final but the last, which the next call or the end closes),
+// and the issues and notes so far; `first_move` is the index of piece.program.moves[0] in
+// the whole reading. The reader calls it when a layer begins and at the end, then drops the
+// moves.
+using PieceSink = std::function<void(const ParsedGcode& piece, std::size_t first_move)>;
+// Lines of one file in order, each without its '\n', the text after the last '\n' too.
+using LineSource = std::function<void(const std::function<void(std::string_view)>& each)>;
+
+// parse_gcode, but the moves go to `sink` a layer at a time: memory holds one layer. The
+// result is parse_gcode's with no moves left in it. The text's form reads RS274NGC
+// programs too; the lines' form needs `scan` of the same lines and no O-words.
+ParsedGcode parse_gcode_layers(std::string_view text, const PenReading& pen,
+                               const PieceSink& sink);
+ParsedGcode parse_gcode_layers(const LineSource& lines, const GcodeScan& scan,
+                               const PenReading& pen, const PieceSink& sink);
+
+// parse_drawing's second reading: after a first reading `first` whose drawing (deposit)
+// moves span [low_z_mm, high_z_mm], the pen reading by Z and the note that says so, when the
+// file lifts its pen by neither command nor the profile's z; nullopt to keep the first.
+struct PenByZ {
+  PenReading pen;
+  ParseIssue note;
+};
+std::optional<PenByZ> pen_by_z(const ParsedGcode& first, const PenReading& pen, double low_z_mm,
+                               double high_z_mm);
 
 // A pen drawing: as parse_gcode, and when the file lifts its pen by neither command nor the
 // profile's z, drawing moves more than kPenLiftMinMm above the lowest one are read as pen-up

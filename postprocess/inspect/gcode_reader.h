@@ -24,6 +24,9 @@ using slicer::Vec3;
 // G and M numbers are small; a huge one ("G1e12") names no command and would not fit int.
 constexpr double kMaxCommandNumber = 1e6;
 
+// An issue quotes at most this much of its line: a file of one huge line keeps a short report.
+constexpr std::size_t kQuotedLineBytes = 200;
+
 // A milling program: the spindle turns faster than any pen servo or laser value (S > this,
 // rpm) and a cutting move goes below the work surface (z < -kPlungeMm).
 constexpr double kSpindleMinRpm = 1000.0;
@@ -36,15 +39,27 @@ constexpr std::size_t kMaxRepeatedBytes = 64u << 20;
 constexpr int kMaxCallDepth = 64;
 constexpr std::size_t kMaxNamedParameters = 10'000;
 
-// One reading of one file: run() once.
+// One reading of one file: run() once, or feed() every line then finish().
 class Reader {
  public:
   Reader(std::string_view text, const PenReading& pen);
+  // A reading fed line by line (no O-word program): `scan` is what the text would tell.
+  Reader(const GcodeScan& scan, const PenReading& pen);
+  // The moves go to `sink` a layer at a time (parse_gcode_layers); not owned.
+  void set_sink(const PieceSink* sink) { sink_ = sink; }
   ParsedGcode run();
+  void feed(std::string_view raw_line);
+  ParsedGcode finish();
+
+  // Per line, as has_o_words and scan_has_e read a whole text.
+  static bool line_has_o_word(std::string_view raw_line);
+  static bool line_has_e(std::string_view raw_line);
 
  private:
   static bool has_o_words(std::string_view t);
-  ParsedGcode run_streaming();
+  void run_streaming();
+  // Hands the moves read so far to the sink and drops them.
+  void flush();
 
   // O-word programs: lines by index, blocks matched first, then run with a program counter.
   ParsedGcode run_indexed();
@@ -126,6 +141,10 @@ class Reader {
   std::string_view text_;
   const PenReading& pen_;
   ParsedGcode out_;
+  const PieceSink* sink_ = nullptr;
+  std::size_t moves_read_ = 0;  // moves of the whole reading, those handed over included
+  std::size_t first_move_ = 0;  // index of out_.program.moves[0] in the whole reading
+  int fed_lines_ = 0;
   Vec3 pos_ = Vec3::Zero();
   double e_ = 0.0;
   double a_ = 0.0;      // rotary axis position, degrees

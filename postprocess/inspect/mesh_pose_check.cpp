@@ -96,14 +96,14 @@ PoseCheckReport check_mesh_pose_csv(std::string_view text, const std::string& fi
   check_pose_rows(rows, m.robot, r);
   check_pose_numbering(text, rows, false, r);
 
-  std::vector<slicer::MeshSubstrate::Located> at;
+  std::vector<slicer::MeshRowReading> at;
   at.reserve(rows.size());
   int layers = 0;
   for (const auto& p : rows) {
-    at.push_back(mesh->locate(p.contact_mm));
+    at.push_back(slicer::read_mesh_row(*mesh, p.contact_mm, p.normal));
     layers = std::max(layers, p.layer + 1);
   }
-  // Each layer's offset: the record's, else the deposits' median.
+  // Each layer's offset: the record's, else the deposits' median distance to the mesh.
   std::vector<double> offsets(static_cast<std::size_t>(layers), 0.0);
   for (int k = 0; k < layers; ++k) {
     const std::size_t ku = static_cast<std::size_t>(k);
@@ -113,44 +113,12 @@ PoseCheckReport check_mesh_pose_csv(std::string_view text, const std::string& fi
     }
     std::vector<double> v;
     for (std::size_t i = 0; i < rows.size(); ++i)
-      if (rows[i].layer == k && rows[i].extrude) v.push_back(at[i].offset_mm);
+      if (rows[i].layer == k && rows[i].extrude) v.push_back(at[i].clearance_mm);
     offsets[ku] = median(v);
   }
-  // How far a row's contact is from layer k's offset surface.
-  const auto off_by = [&](std::size_t i, int k) {
-    return std::hypot(at[i].residual_mm, at[i].offset_mm - offsets[static_cast<std::size_t>(k)]);
-  };
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    const auto& p = rows[i];
-    const double cosine = std::clamp(p.normal.normalized().dot(at[i].normal), -1.0, 1.0);
-    const double angle = slicer::rad_to_deg(std::acos(cosine));
-    if (angle > kMeshNormalDeg) {
-      r.normals.add(i, "normal " + fmt_fixed(angle, 3) +
-                           " deg off the mesh's normal under the contact point");
-    }
-    const int k = std::clamp(p.layer, 0, layers - 1);
-    const double o_k = offsets[static_cast<std::size_t>(k)];
-    if (p.extrude) {
-      if (off_by(i, k) > kMeshSurfaceMm) {
-        r.off_surface.add(i, "contact " + fmt_fixed(off_by(i, k), 4) + " mm off layer " +
-                                 std::to_string(k) + "'s offset surface (" + fmt_fixed(o_k, 3) +
-                                 " mm along the mesh's normal; it is " +
-                                 fmt_fixed(at[i].offset_mm, 4) + " mm)");
-      }
-      if (i > 0 && !rows[i - 1].extrude && off_by(i - 1, k) > kMeshSurfaceMm) {
-        r.off_surface.add(i, "deposit starts " + fmt_fixed(off_by(i - 1, k), 4) + " mm off layer " +
-                                 std::to_string(k) +
-                                 "'s offset surface (a travel marked as depositing?)");
-      }
-    } else if (at[i].residual_mm > kMeshSurfaceMm || at[i].offset_mm < o_k - kMeshSurfaceMm) {
-      r.off_surface.add(i, "travel " + fmt_fixed(at[i].offset_mm, 4) +
-                               " mm along the mesh's "
-                               "normal (" +
-                               fmt_fixed(at[i].residual_mm, 4) + " mm off it), under layer " +
-                               std::to_string(k) + "'s " + fmt_fixed(o_k, 3) +
-                               " mm or beside the mesh");
-    }
-  }
+  const slicer::MeshRowJudgement judged = slicer::judge_mesh_rows(rows, at, offsets);
+  for (const auto& f : judged.normals) r.normals.add(f.row, f.what);
+  for (const auto& f : judged.off_surface) r.off_surface.add(f.row, f.what);
   // Strands and contacts per layer in (u, v).
   std::vector<CylinderLayer> strand_layers;
   for (std::size_t b = 0; b < rows.size();) {
@@ -161,7 +129,7 @@ PoseCheckReport check_mesh_pose_csv(std::string_view text, const std::string& fi
     CylinderLayer cl{rows[b].layer, kPeriodMm, {}};
     for (std::size_t i = b; i <= e; ++i) {
       if (!rows[i].extrude) continue;
-      deposit_offsets.push_back(at[i].offset_mm);
+      deposit_offsets.push_back(at[i].clearance_mm);
       if (i == 0) continue;
       const std::size_t from = i - 1;
       if (cl.strands.empty() || i == b || !rows[from].extrude) {
@@ -187,8 +155,17 @@ PoseCheckReport check_mesh_pose_csv(std::string_view text, const std::string& fi
       if (c.layer == l.layer) l.touches.push_back(c);
     }
   }
-  r.joints = machines::analyse_joints(machines::arm_model(m.robot), m.robot, rows);
+  r.joints = machines::analyse_joints(machines::arm_model(m.robot), m.robot, rows, true);
   r.joints_checked = true;
+  // The start and end as the writers move (robot_transit.h), the mesh with every layer on it
+  // on the way home.
+  if (r.joints.ok()) {
+    check_pose_transit(rows, m.robot,
+                       machines::mesh_workpiece(slicer::read_mesh_file(cm.mesh_path),
+                                                offsets.empty() ? 0.0 : offsets.back()),
+                       r);
+  }
+  r.program_speeds = check_program_speeds(rows, file, m);
   return r;
 }
 

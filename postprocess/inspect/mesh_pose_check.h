@@ -1,9 +1,10 @@
 // `strand check` for a pose CSV planned on a robot-held mesh (slicer/mesh_substrate.h): the
 // mesh is found from the record written beside the CSV (part.substrate.json: the mesh file
-// and its fingerprint, the layer offsets) or given with --substrate-mesh. Every row's contact
-// point is mapped back onto the mesh: deposits must lie on their layer's offset surface
-// (kMeshSurfaceMm), travels on or above it, every normal within kMeshNormalDeg of the mesh's
-// normal there; strands and crossings are judged per layer in the mesh's (u, v). The rows
+// and its fingerprint, the layer offsets) or given with --substrate-mesh. Every row is read
+// back by the rule the planner places it by (slicer/mesh_row_rule.h): deposits on their
+// layer's offset surface (kMeshSurfaceMm), travels on or above it, every normal within
+// kMeshNormalDeg of the mesh's normal at its foot; strands and crossings are judged per layer
+// in the mesh's (u, v). The rows
 // against the cell (nozzle tip and axis, speeds, numbering, reach and joints) are checked as
 // for a cylinder (pose_check.h).
 #pragma once
@@ -15,14 +16,13 @@
 
 #include "machines/profile.h"
 #include "postprocess/inspect/pose_check.h"
+#include "slicer/mesh_row_rule.h"
 #include "slicer/mesh_substrate.h"
 
 namespace strand::post {
 
-// A deposit's contact point may be this far from its layer's offset surface, mm, and a
-// normal this far from the mesh's normal under the contact point, deg.
-inline constexpr double kMeshSurfaceMm = 0.05;
-inline constexpr double kMeshNormalDeg = 1.0;
+using slicer::kMeshNormalDeg;
+using slicer::kMeshSurfaceMm;
 
 struct CsvMesh {
   std::string mesh_path;  // from the current directory

@@ -114,23 +114,31 @@ std::string pen_convention(const PenReading& r, int m) {
   }
 }
 
+std::optional<PenByZ> pen_by_z(const ParsedGcode& first, const PenReading& pen, double low,
+                               double high) {
+  if (first.has_e || first.pen_commands > 0 || pen.z_down_max_mm) return std::nullopt;
+  if (!(high - low > kPenLiftMinMm)) return std::nullopt;  // one drawing height: nothing to lift
+  PenByZ by_z{pen, {}};
+  by_z.pen.z_down_max_mm = low + kPenLiftMinMm;
+  by_z.note = {0, "pen read from Z: drawing moves above z " +
+                      slicer::short_number(*by_z.pen.z_down_max_mm) +
+                      " mm (the lowest drawing z + " + slicer::short_number(kPenLiftMinMm) +
+                      " mm) are pen-up travels"};
+  return by_z;
+}
+
 ParsedGcode parse_drawing(std::string_view text, const PenReading& pen) {
   ParsedGcode first = parse_gcode(text, pen);
-  if (first.has_e || first.pen_commands > 0 || pen.z_down_max_mm) return first;
   double low = std::numeric_limits<double>::infinity(), high = -low;
   for (const slicer::Move& m : first.program.moves) {
     if (m.kind != slicer::MoveKind::Deposit) continue;
     low = std::min(low, m.end_mm.z());
     high = std::max(high, m.end_mm.z());
   }
-  if (!(high - low > kPenLiftMinMm)) return first;  // one drawing height: nothing to lift
-  PenReading by_z = pen;
-  by_z.z_down_max_mm = low + kPenLiftMinMm;
-  ParsedGcode second = parse_gcode(text, by_z);
-  second.notes.push_back({0, "pen read from Z: drawing moves above z " +
-                                 slicer::short_number(*by_z.z_down_max_mm) +
-                                 " mm (the lowest drawing z + " +
-                                 slicer::short_number(kPenLiftMinMm) + " mm) are pen-up travels"});
+  const auto by_z = pen_by_z(first, pen, low, high);
+  if (!by_z) return first;
+  ParsedGcode second = parse_gcode(text, by_z->pen);
+  second.notes.push_back(by_z->note);
   return second;
 }
 

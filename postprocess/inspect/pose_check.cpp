@@ -32,7 +32,10 @@ bool PoseCheckReport::ok() const {
   const bool joints_ok = !joints_checked || joints.ok();
   return crossing_count() == 0 && off_tip.total == 0 && normals.total == 0 &&
          off_surface.total == 0 && speed.total == 0 && outside.total == 0 && parse.total == 0 &&
-         numbering.total == 0 && quaternions.total == 0 && extrusion.total == 0 && joints_ok;
+         numbering.total == 0 && quaternions.total == 0 && extrusion.total == 0 && joints_ok &&
+         (!transit_checked || transit.ok) &&
+         std::all_of(program_speeds.begin(), program_speeds.end(),
+                     [](const ProgramSpeed& s) { return s.ok(); });
 }
 
 std::size_t PoseCheckReport::crossing_count() const {
@@ -315,6 +318,15 @@ void check_pose_numbering(std::string_view text, const std::vector<slicer::PoseP
   check_numbering(raw_rows(text), rows, report, laps_by_turn);
 }
 
+void check_pose_transit(const std::vector<slicer::PosePoint>& rows, const machines::RobotCell& cell,
+                        const machines::TransitWorkpiece& workpiece, PoseCheckReport& report) {
+  std::optional<machines::Joints> last;
+  if (report.joints_checked && report.joints.ok() && !report.joints.solutions.empty())
+    last = report.joints.solutions.back();
+  report.transit = machines::plan_transit(cell, rows, workpiece, last);
+  report.transit_checked = true;
+}
+
 PoseCheckReport check_pose_csv(std::string_view text, const std::string& file,
                                const machines::MachineProfile& m) {
   if (!m.robot.enabled) {
@@ -343,8 +355,26 @@ PoseCheckReport check_pose_csv(std::string_view text, const std::string& file,
   }
   check_numbering(raw_rows(text), rows, r);
   check_on_cylinder(samples, slicer::kGcodeResolutionMm, r);
-  r.joints = machines::analyse_joints(machines::arm_model(m.robot), m.robot, rows);
+  r.joints = machines::analyse_joints(machines::arm_model(m.robot), m.robot, rows, true);
   r.joints_checked = true;
+  if (r.joints.ok()) {
+    // The cylinder the rows lie on (radius from the layers; without one, the deposits' own
+    // radius: a larger cylinder, on the safe side), its length from the pattern.
+    const CurvedPart part = read_curved_part(text, file);
+    std::vector<double> radii;
+    double z_lo = 0.0, z_hi = 0.0;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& c = rows[i].contact_mm;
+      radii.push_back(std::hypot(c.x(), c.y()));
+      z_lo = i ? std::min(z_lo, c.z()) : c.z();
+      z_hi = i ? std::max(z_hi, c.z()) : c.z();
+    }
+    const double radius = part.radius_mm > 0.0 ? part.radius_mm : median(radii);
+    const double length = part.length_mm > 0.0 ? part.length_mm : std::max(z_hi, z_lo + z_hi);
+    const double printed = part.layer_offsets_mm.empty() ? 0.0 : part.layer_offsets_mm.back();
+    check_pose_transit(rows, m.robot, machines::cylinder_workpiece(radius, length, printed), r);
+  }
+  r.program_speeds = check_program_speeds(rows, file, m);
   return r;
 }
 

@@ -12,9 +12,11 @@
 
 #include "machines/joint_analysis.h"
 #include "machines/profile.h"
+#include "machines/robot_transit.h"
 #include "postprocess/inspect/crossings.h"
 #include "postprocess/inspect/curved_files.h"
 #include "postprocess/inspect/gcode_parser.h"
+#include "postprocess/inspect/program_speed_check.h"
 
 namespace strand::post {
 
@@ -49,6 +51,12 @@ struct PoseCheckReport {
   PoseFindings numbering, quaternions, extrusion;
   bool joints_checked = false;
   machines::JointReport joints;
+  // The program's start and end as its writers move (robot_transit.h): home, clearance pose,
+  // approach, first row; last row, retract, clearance pose, home.
+  bool transit_checked = false;
+  machines::TransitPlan transit;
+  // The vendor programs beside the CSV read back for their contact speed (issue 37).
+  std::vector<ProgramSpeed> program_speeds;
   // A pose CSV on a robot-held mesh (mesh_pose_check.h): layers list the deposits' offset
   // from the mesh, and the note says which mesh.
   bool on_mesh = false;
@@ -75,6 +83,11 @@ void check_pose_rows(const std::vector<slicer::PosePoint>& rows, const machines:
                      PoseCheckReport& report);
 void check_pose_numbering(std::string_view text, const std::vector<slicer::PosePoint>& rows,
                           bool laps_by_turn, PoseCheckReport& report);
+
+// The start and end of the program the rows are (robot_transit.h) for `workpiece` held by
+// `cell`: a start or end that cannot be planned clear of the nozzle fails the check.
+void check_pose_transit(const std::vector<slicer::PosePoint>& rows, const machines::RobotCell& cell,
+                        const machines::TransitWorkpiece& workpiece, PoseCheckReport& report);
 
 nlohmann::json to_json(const PoseCheckReport& r);
 std::string to_text(const PoseCheckReport& r);

@@ -99,6 +99,8 @@ nlohmann::json to_json(const PoseCheckReport& r) {
                       {"extrusion", findings_json(r.extrusion)},
                       {"parse_issues", findings_json(r.parse)}};
   if (r.joints_checked) j["joints"] = joints_json(r.joints);
+  if (r.transit_checked) j["transit"] = machines::transit_json(r.transit);
+  if (!r.program_speeds.empty()) j["contact_speed"] = program_speeds_json(r.program_speeds);
   if (r.on_mesh) j["substrate"] = r.substrate_note;
   return j;
 }
@@ -140,6 +142,8 @@ std::string to_text(const PoseCheckReport& r) {
             out);
   list_text("problems in the file", at, r.parse, out);
   if (r.joints_checked) out += joints_text(r.joints);
+  if (r.transit_checked) out += "outside laps: " + machines::transit_text(r.transit) + "\n";
+  out += program_speeds_text(r.program_speeds);
   out += r.ok() ? "check: OK\n" : "check: FAILED\n";
   return out;
 }

@@ -1,6 +1,6 @@
 // Mesh pose planning, the path: strokes cut into pieces no longer than kMeshStepMm and sampled
-// on their layer's offset surface, travels lifted above it, every point's nozzle cone checked
-// against the mesh.
+// on their layer's offset surface, travels lifted above it, every point placed by the row rule
+// (slicer/mesh_row_rule.h) and its nozzle cone checked against the mesh.
 #include "postprocess/plan/mesh_path_targets.h"
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include "machines/gcode_format.h"
 #include "postprocess/plan/surface_sampling.h"
 #include "slicer/input_error.h"
+#include "slicer/mesh_row_rule.h"
 #include "slicer/params.h"
 #include "slicer/tolerances.h"
 
@@ -88,7 +89,7 @@ Target PathBuilder::lifted(const Target& t, double by) const {
   l.lifted = true;
   l.extrude = false;
   l.speed = o_.lift_speed_mm_per_s;
-  l.frame = s_.frame_at(t.uv, l.offset);
+  l.frame = slicer::mesh_row_frame(s_, t.uv, l.offset);  // same foot and normal
   check_cone(l);
   return l;
 }
@@ -153,7 +154,7 @@ void PathBuilder::push(const Vec2& uv, double offset, bool extrude, Feature f, d
   t.feature = f;
   t.speed = speed;
   t.layer = layer_;
-  t.frame = s_.frame_at(uv, offset);
+  t.frame = slicer::mesh_row_frame(s_, uv, offset);
   check_cone(t);
   out_.push_back(t);
   uv_ = uv, off_ = offset, feature_ = f;

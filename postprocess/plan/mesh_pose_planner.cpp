@@ -16,6 +16,7 @@
 #include "machines/workpiece_pose.h"
 #include "postprocess/plan/mesh_path_targets.h"
 #include "slicer/input_error.h"
+#include "slicer/mesh_row_rule.h"
 #include "slicer/params.h"
 #include "slicer/units.h"
 
@@ -419,6 +420,7 @@ MeshPlan plan_poses_on_mesh(const slicer::Toolpath& placed, const slicer::MeshSu
   plan.program.substrate = s.describe();
   for (const auto& layer : placed.layers)
     plan.program.layers.push_back({layer.z_mm, layer.height_mm, 1.0});
+  judge_mesh_plan(s, plan);
   return plan;
 }
 

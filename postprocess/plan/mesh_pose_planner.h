@@ -51,15 +51,29 @@ struct MeshPlan {
   // rotation plus what tilting brings about the nozzle axis).
   double rotation_min_deg = 0.0, rotation_max_deg = 0.0;
   double max_tilt_deg = 0.0;  // largest angle between a contact normal and the mesh's facing
+  // The program read back by the row rule (slicer/mesh_row_rule.h) as `strand check` reads
+  // its CSV: the deposit farthest from its layer's offset surface (distance to the mesh less
+  // the offset, mm) and its row, and the largest raise of a deposit above its layer's offset
+  // along its normal (where the faceted mesh is concave under the nozzle), mm.
+  double worst_offset_mm = 0.0;
+  std::size_t worst_offset_row = 0;
+  double max_raise_mm = 0.0;
 };
 
 // Plans every layer of `placed` (strokes in (u, v), z_mm = nozzle tip offset). Speeds as
 // plan_poses's options. Throws InputError ("substrate.mesh = FILE: ...", one line) where the
 // pattern leaves the mesh, the nozzle's cone meets it, a point cannot be presented at any
-// rotation about the nozzle axis (naming u, v, x, y, z, the layer and why), or the program
-// would exceed kMaxPosePoints.
+// rotation about the nozzle axis (naming u, v, x, y, z, the layer and why), the program
+// would exceed kMaxPosePoints, or a row breaks the row rule as `strand check` would read it
+// from the CSV (its first such row with the check's own line).
 MeshPlan plan_poses_on_mesh(const slicer::Toolpath& placed, const slicer::MeshSubstrate& s,
                             const machines::RobotCell& cell, const PosePlanOptions& options);
+
+// Reads `plan`'s rows back by the row rule (slicer/mesh_row_rule.h) as `strand check` reads
+// its CSV (the CSV's digits, the layers' offsets), sets its worst_offset_mm, worst_offset_row
+// and max_raise_mm, and throws InputError with the check's line for the first row the check
+// would reject (plan_poses_on_mesh calls it).
+void judge_mesh_plan(const slicer::MeshSubstrate& s, MeshPlan& plan);
 
 // Rotation about `up` (unit) of `r` relative to `reference` (both workpiece -> machine), rad:
 // the twist part of r * reference^T.

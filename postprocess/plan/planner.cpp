@@ -72,10 +72,13 @@ class Planner {
     const Vec3 start(s.start_mm.x() + offset_.x(), s.start_mm.y() + offset_.y(), z);
     travel_to(start);
     const double area = slicer::bead_area_mm2(s.width_mm, s.height_mm);
+    const double speed = stroke_ < o_.stroke_speeds_mm_per_min.size() ? o_.stroke_speeds_mm_per_min[stroke_]
+                                                                       : o_.speed_mm_per_min;
+    ++stroke_;
     Vec2 at = s.start_mm + offset_;
     for (const auto& seg : s.segments) {
       const Vec2 end = seg.end_mm + offset_;
-      const double feed = feed_for(seg.feature, area);
+      const double feed = feed_for(seg.feature, area, speed);
       if (seg.kind == slicer::SegmentKind::Line) {
         deposit(at, end, z, feed, area, s.width_mm, seg.feature);
       } else if (m_.arcs) {
@@ -118,24 +121,27 @@ class Planner {
 
   // Base speed x feature factor (job first, then profile), capped by the machine's feed
   // and, on E-driven machines, by its volumetric flow over the bead section.
-  double feed_for(Feature f, double area_mm2) {
+  double feed_for(Feature f, double area_mm2, double speed_mm_per_min) {
     // Consecutive segments nearly always share feature and bead: skip the table lookups.
-    if (cached_ && f == cached_feature_ && area_mm2 == cached_area_) return cached_feed_;
+    if (cached_ && f == cached_feature_ && area_mm2 == cached_area_ && speed_mm_per_min == cached_speed_) {
+      return cached_feed_;
+    }
     cached_ = true;
     cached_feature_ = f;
     cached_area_ = area_mm2;
-    cached_feed_ = feed_uncached(f, area_mm2);
+    cached_speed_ = speed_mm_per_min;
+    cached_feed_ = feed_uncached(f, area_mm2, speed_mm_per_min);
     return cached_feed_;
   }
 
-  double feed_uncached(Feature f, double area_mm2) const {
+  double feed_uncached(Feature f, double area_mm2, double speed_mm_per_min) const {
     double factor = 1.0;
     if (auto it = o_.speed_factors.find(f); it != o_.speed_factors.end()) {
       factor = it->second;
     } else if (auto pt = m_.speed_factors.find(f); pt != m_.speed_factors.end()) {
       factor = pt->second;
     }
-    double feed = std::min(o_.speed_mm_per_min * factor, m_.limits.max_feed_mm_per_min);
+    double feed = std::min(speed_mm_per_min * factor, m_.limits.max_feed_mm_per_min);
     const double q_max = m_.limits.max_volumetric_flow_mm3_per_s;
     if (m_.deposition.model == machines::DepositionModel::EVolumetric && q_max > 0 && area_mm2 > 0) {
       feed = std::min(feed, slicer::mm_per_s_to_mm_per_min(q_max / area_mm2));
@@ -184,7 +190,9 @@ class Planner {
   bool cached_ = false;
   Feature cached_feature_ = Feature::Infill;
   double cached_area_ = 0.0;
+  double cached_speed_ = 0.0;
   double cached_feed_ = 0.0;
+  std::size_t stroke_ = 0;  // strokes planned so far, for stroke_speeds_mm_per_min
 };
 
 }  // namespace
@@ -197,6 +205,9 @@ PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm
                     Feature::Grip, Feature::Frame, Feature::Link, Feature::Pen}) {
     const std::string key = slicer::to_string(f) + "-speed-factor";
     if (t.parameters.contains(key)) o.speed_factors[f] = t.parameters.at(key).get<double>();
+  }
+  if (t.derived.is_object() && t.derived.contains("stroke_speeds_mm_per_min")) {
+    o.stroke_speeds_mm_per_min = t.derived.at("stroke_speeds_mm_per_min").get<std::vector<double>>();
   }
   return o;
 }

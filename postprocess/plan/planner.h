@@ -11,6 +11,7 @@
 
 #include <map>
 #include <memory>
+#include <vector>
 
 #include "machines/profile.h"
 #include "slicer/motion.h"
@@ -22,9 +23,13 @@ struct PlanOptions {
   double speed_mm_per_min = 250.0;          // base deposit speed
   double arc_tolerance_mm = 0.01;           // chord error when arcs are segmented
   std::map<slicer::Feature, double> speed_factors;  // missing feature = 1.0
+  // Base speed of each stroke in print order, replacing speed_mm_per_min (the line-width
+  // matrix prints every line at its own speed); strokes past the end use speed_mm_per_min.
+  std::vector<double> stroke_speeds_mm_per_min;
 };
 
-// Reads "speed" and "<feature>-speed-factor" from the toolpath's parameters.
+// Reads "speed" and "<feature>-speed-factor" from the toolpath's parameters and
+// "stroke_speeds_mm_per_min" from its derived values.
 PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm);
 
 // Plans the toolpath for the machine and checks the result fits its build volume

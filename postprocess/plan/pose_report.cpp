@@ -5,9 +5,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "machines/contact_speed.h"
 #include "machines/gcode_format.h"
 #include "postprocess/plan/cylinder_placement.h"
 #include "postprocess/plan/report.h"
+#include "slicer/input_error.h"
 #include "slicer/units.h"
 
 namespace strand::post {
@@ -172,9 +174,70 @@ std::string pose_summary(const nlohmann::json& r) {
     o << "  programs       " << r.at("programs").at("text").get<std::string>() << "\n";
   if (r.contains("robot"))
     o << "  joints         " << r.at("robot").at("text").get<std::string>() << "\n";
+  o << contact_speed_summary(r);
   if (r.contains("warnings"))
     for (const auto& w : r.at("warnings")) o << "  warning        " << w.get<std::string>() << "\n";
   return o.str();
+}
+
+namespace {
+
+nlohmann::json figures_json(const machines::ContactSpeedFigures& f) {
+  return {{"worst_ratio", round_to(f.worst_ratio, 4)},
+          {"worst_ratio_row", f.worst_ratio_row},
+          {"worst_lap_time_difference_pct", round_to(100.0 * f.worst_lap_difference, 2)},
+          {"worst_lap", f.worst_lap},
+          {"deposit_moves", f.deposit_moves}};
+}
+
+std::string signed_pct(double fraction) {
+  const std::string t = machines::fmt_fixed(100.0 * fraction, 1);
+  return (t[0] == '-' ? "" : "+") + t + " %";
+}
+
+}  // namespace
+
+void add_contact_speed(nlohmann::json& report, const slicer::PoseProgram& p,
+                       const machines::MachineProfile& m) {
+  nlohmann::json programs = nlohmann::json::array();
+  std::string text;
+  for (const machines::VendorProgram& v : machines::vendor_programs(m.robot)) {
+    const auto written = machines::contact_speed_figures(p, machines::timed_motions(p, v.frame));
+    // The same frame moved at each row's own speed: what the program did before it scaled.
+    std::vector<machines::ProgrammedMotion> at_row_speed = machines::timed_motions(p, v.frame);
+    for (std::size_t i = 1; i < at_row_speed.size(); ++i)
+      at_row_speed[i].speed_mm_per_s = p.points[i].speed_mm_per_s;
+    const auto unscaled = machines::contact_speed_figures(p, at_row_speed);
+    nlohmann::json j = figures_json(written);
+    j["program"] = v.name;
+    j["moves"] = v.frame == machines::MovedFrame::Contact
+                     ? "the contact point"
+                     : "a workpiece frame, speeds scaled by its chord / the contact chord";
+    j["at_row_speed"] = figures_json(unscaled);
+    programs.push_back(j);
+    text += (text.empty() ? "" : ", ") + v.name + " " +
+            machines::fmt_fixed(written.worst_ratio, 3) + " / " +
+            signed_pct(written.worst_lap_difference);
+    const bool off = std::abs(written.worst_ratio - 1.0) > kContactSpeedTolerance ||
+                     std::abs(written.worst_lap_difference) > kContactSpeedTolerance;
+    if (off) {
+      throw InputError("robot program " + v.name + ": the contact point would move at " +
+                       machines::fmt_fixed(written.worst_ratio, 3) + "x the planned speed (row " +
+                       std::to_string(written.worst_ratio_row) + ") and lap " +
+                       std::to_string(written.worst_lap) + " take " +
+                       signed_pct(written.worst_lap_difference) +
+                       " against the extruder's time line (more than " +
+                       machines::fmt_fixed(100.0 * kContactSpeedTolerance, 0) + " %)");
+    }
+  }
+  report["contact_speed"] = {
+      {"programs", programs},
+      {"text", text + " (worst contact / planned speed, worst lap against the extruder)"}};
+}
+
+std::string contact_speed_summary(const nlohmann::json& r) {
+  if (!r.contains("contact_speed")) return "";
+  return "  contact speed  " + r.at("contact_speed").at("text").get<std::string>() + "\n";
 }
 
 }  // namespace strand::post

@@ -23,4 +23,15 @@ nlohmann::json pose_report(const slicer::Toolpath& t, const slicer::SubstrateSpe
 // Size, laps, turning, length, time, ink, programs, joints (when present in the report).
 std::string pose_summary(const nlohmann::json& report);
 
+// The robot cell's vendor programs against the extruder's time line (machines/contact_speed.h):
+// per program the worst contact speed / planned speed over deposit moves and the worst lap
+// time difference, as written, and as a program moving its frame at the rows' own speeds would
+// run. Stored as report["contact_speed"]; throws InputError naming the program when a written
+// program's contact speed or lap time would differ by more than kContactSpeedTolerance.
+constexpr double kContactSpeedTolerance = 0.02;
+void add_contact_speed(nlohmann::json& report, const slicer::PoseProgram& p,
+                       const machines::MachineProfile& m);
+// The summary's "contact speed" line ("" without report["contact_speed"]).
+std::string contact_speed_summary(const nlohmann::json& report);
+
 }  // namespace strand::post

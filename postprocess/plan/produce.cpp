@@ -67,41 +67,71 @@ struct Body {
 
 }  // namespace
 
+struct LayerProducer::State {
+  State(const slicer::Toolpath& r, const machines::MachineProfile& machine, const PlanOptions& o,
+        const ProduceOptions& p)
+      : record(r), m(machine), options(o), po(p), planner(m, o), estimate(&m), gcode(m, eo, p.streams.gcode) {
+    if (po.viewer_e) {
+      machines::EmitOptions veo;
+      veo.viewer_e = true;
+      viewer = std::make_unique<Body>(m, veo, po.streams.viewer_gcode);
+    }
+  }
+  const slicer::Toolpath& record;
+  const machines::MachineProfile& m;
+  PlanOptions options;
+  ProduceOptions po;
+  LayerPlanner planner;
+  EstimateStream estimate;
+  machines::EmitOptions eo;
+  Body gcode;
+  std::unique_ptr<Body> viewer;
+  Produced out;
+  std::size_t added = 0;
+};
+
+LayerProducer::LayerProducer(const slicer::Toolpath& record, std::size_t layers,
+                             const machines::MachineProfile& m, const PlanOptions& options,
+                             const ProduceOptions& po) {
+  slicer::progress_phase(po.progress, po.phase, layers);
+  s_ = std::make_unique<State>(record, m, options, po);
+}
+
+LayerProducer::~LayerProducer() = default;
+
+const slicer::MotionProgram& LayerProducer::add(const slicer::Layer& layer) {
+  State& s = *s_;
+  const slicer::MotionProgram& piece = s.planner.plan(layer);
+  s.estimate.add(piece);
+  s.gcode.writer.add(piece);
+  if (s.viewer) s.viewer->writer.add(piece);
+  if (s.po.keep_program) slicer::append_piece(s.out.program, piece);
+  slicer::progress_step(s.po.progress, ++s.added);
+  return piece;
+}
+
+Produced LayerProducer::finish() {
+  State& s = *s_;
+  Produced& out = s.out;
+  s.gcode.writer.finish();
+  if (s.viewer) s.viewer->writer.finish();
+  machines::EmitOptions eo = s.eo;
+  eo.header = report_job(out, s.record, s.m, s.estimate.finish(), s.options, s.po.gcode_path);
+  out.gcode_head = machines::gcode_head(s.m, eo);
+  if (!s.po.streams.gcode) out.gcode = out.gcode_head + std::move(s.gcode.memory).str();
+  if (s.viewer) {
+    eo.viewer_e = true;
+    out.viewer_gcode_head = machines::gcode_head(s.m, eo);
+    if (!s.po.streams.viewer_gcode) out.viewer_gcode = out.viewer_gcode_head + std::move(s.viewer->memory).str();
+  }
+  return std::move(out);
+}
+
 Produced produce_layers(slicer::LayerSource& source, const machines::MachineProfile& m,
                         const PlanOptions& options, const ProduceOptions& po) {
-  const slicer::Toolpath& record = source.record;
-  const std::size_t layers = source.layer_count();
-  slicer::progress_phase(po.progress, po.phase, layers);
-  LayerPlanner planner(m, options);
-  EstimateStream estimate(&m);
-  machines::EmitOptions eo;
-  Body gcode(m, eo, po.streams.gcode);
-  std::unique_ptr<Body> viewer;
-  if (po.viewer_e) {
-    machines::EmitOptions veo;
-    veo.viewer_e = true;
-    viewer = std::make_unique<Body>(m, veo, po.streams.viewer_gcode);
-  }
-  Produced out;
-  for (std::size_t k = 0; k < layers; ++k) {
-    const slicer::MotionProgram& piece = planner.plan(source.layer(k));
-    estimate.add(piece);
-    gcode.writer.add(piece);
-    if (viewer) viewer->writer.add(piece);
-    if (po.keep_program) slicer::append_piece(out.program, piece);
-    slicer::progress_step(po.progress, k + 1);
-  }
-  gcode.writer.finish();
-  if (viewer) viewer->writer.finish();
-  eo.header = report_job(out, record, m, estimate.finish(), options, po.gcode_path);
-  out.gcode_head = machines::gcode_head(m, eo);
-  if (!po.streams.gcode) out.gcode = out.gcode_head + std::move(gcode.memory).str();
-  if (viewer) {
-    eo.viewer_e = true;
-    out.viewer_gcode_head = machines::gcode_head(m, eo);
-    if (!po.streams.viewer_gcode) out.viewer_gcode = out.viewer_gcode_head + std::move(viewer->memory).str();
-  }
-  return out;
+  LayerProducer producer(source.record, source.layer_count(), m, options, po);
+  for (std::size_t k = 0; k < source.layer_count(); ++k) producer.add(source.layer(k));
+  return producer.finish();
 }
 
 Produced produce(slicer::Toolpath t, const machines::MachineProfile& m,

@@ -1,6 +1,8 @@
 // One job end to end after generation: plan, estimate, emit G-code with its header, report.
 #pragma once
 
+#include <cstddef>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
@@ -60,6 +62,28 @@ struct ProduceOptions {
 // them to temp files that are dropped, slicer::OutputFiles).
 Produced produce_layers(slicer::LayerSource& source, const machines::MachineProfile& m,
                         const PlanOptions& options, const ProduceOptions& produce_options);
+
+// produce_layers with the layers handed in rather than asked for: add() them in order (one
+// call at a time, from any thread), then finish(). What lets a job make its layers in
+// parallel (jobs/slice_parallel.h) and still plan and write them in order, the same bytes.
+class LayerProducer {
+ public:
+  // `record` is read again by finish() (its derived sizes complete by then); the references
+  // must outlive the producer.
+  LayerProducer(const slicer::Toolpath& record, std::size_t layers,
+                const machines::MachineProfile& m, const PlanOptions& options,
+                const ProduceOptions& produce_options);
+  ~LayerProducer();
+  LayerProducer(const LayerProducer&) = delete;
+  LayerProducer& operator=(const LayerProducer&) = delete;
+  // Plans, estimates and writes the next layer; the planned piece, valid until the next call.
+  const slicer::MotionProgram& add(const slicer::Layer& layer);
+  Produced finish();
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
 
 // The same from an already planned whole program (conformal printing plans through a
 // surface), in memory.

@@ -13,6 +13,7 @@
 #include "machines/pose_csv.h"
 #include "machines/program_text.h"
 #include "machines/rapid_writer.h"
+#include "machines/robot_transit.h"
 #include "machines/rotary_gcode.h"
 #include "machines/sunrise_writer.h"
 #include "machines/urscript_writer.h"
@@ -24,7 +25,9 @@
 #include "postprocess/plan/pose_report.h"
 #include "postprocess/plan/produce_on_mesh.h"
 #include "postprocess/plan/report.h"
+#include "postprocess/plan/robot_transit_plan.h"
 #include "slicer/input_error.h"
+#include "slicer/mesh_io.h"
 #include "slicer/params.h"
 #include "slicer/units.h"
 
@@ -261,11 +264,12 @@ void add_lap_timing(nlohmann::json& report, const LapTiming& timing,
 // KUKA: Sunrise Java and KRL .src/.dat beside the CSV.
 void write_kuka(CurvedProduced& out, const MachineProfile& m, const std::vector<std::string>& paths,
                 const std::vector<std::string>& header, double tol, const std::string& csv,
-                const std::string& ext) {
+                const std::string& ext, const machines::TransitPlan& transit) {
   const std::string base = std::filesystem::path(paths[0]).stem().string();
   const std::string java = machines::write_sunrise_java(
-      out.program, m, base, std::filesystem::path(paths[0]).filename().string(), header);
-  const machines::KrlProgram krl = machines::write_krl(out.program, m, base, header, tol);
+      out.program, m, base, std::filesystem::path(paths[0]).filename().string(), header,
+      transit);
+  const machines::KrlProgram krl = machines::write_krl(out.program, m, base, header, tol, transit);
   out.files = {
       {paths[0], csv}, {paths[1], java}, {paths[2], krl.src}, {paths[3], krl.dat}, {paths[4], ext}};
   const auto lines = [](const std::string& s) { return std::count(s.begin(), s.end(), '\n'); };
@@ -290,7 +294,7 @@ void write_kuka(CurvedProduced& out, const MachineProfile& m, const std::vector<
 // Robot cell: pose CSV, the controller's programs and the extruder's G-code.
 void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachineProfile& m,
                  const std::vector<std::string>& paths, const std::vector<std::string>& header,
-                 double tol) {
+                 double tol, const machines::TransitPlan& transit) {
   const std::string base = std::filesystem::path(paths[0]).stem().string();
   const std::string csv_name = std::filesystem::path(paths[0]).filename().string();
   const std::string csv = machines::write_pose_csv(out.program);
@@ -302,10 +306,12 @@ void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachinePr
   const auto lines = [](const std::string& s) { return std::count(s.begin(), s.end(), '\n'); };
   const double e_total = extruder.e_total;
   add_lap_timing(out.report, timing, extruder);
+  // Issue 37: each vendor program's contact speed against the time line (refused past 2 %).
+  add_contact_speed(out.report, out.program, m);
   const auto controller = m.robot.controller;
   if (controller == machines::RobotController::UniversalRobots) {
     const std::string script = machines::write_urscript(
-        out.program, m, machines::urscript_function_name(base), csv_name, header, tol);
+        out.program, m, machines::urscript_function_name(base), csv_name, header, tol, transit);
     out.files = {{paths[0], csv}, {paths[1], script}, {paths[2], ext}};
     out.report["outputs"] = {{"main", paths[0]},
                              {"csv", paths[0]},
@@ -323,7 +329,7 @@ void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachinePr
   } else if (controller == machines::RobotController::Abb) {
     const std::string module = std::filesystem::path(paths[1]).stem().string();
     const machines::RapidProgram rapid =
-        machines::write_rapid(out.program, m, module, csv_name, header, tol);
+        machines::write_rapid(out.program, m, module, csv_name, header, tol, transit);
     out.files = {{paths[0], csv}, {paths[1], rapid.mod}, {paths[2], ext}};
     out.report["outputs"] = {
         {"main", paths[0]}, {"csv", paths[0]}, {"rapid", paths[1]}, {"extruder_gcode", paths[2]}};
@@ -340,7 +346,7 @@ void write_robot(CurvedProduced& out, const slicer::Toolpath& t, const MachinePr
                      std::to_string(rapid.move_l) + " MoveL, extruder " +
                      std::to_string(lines(ext)) + " lines"}};
   } else {
-    write_kuka(out, m, paths, header, tol, csv, ext);
+    write_kuka(out, m, paths, header, tol, csv, ext, transit);
   }
   const double ink_ml = slicer::mm3_to_ml(e_total * m.deposition.mm3_per_e);
   const double bead_ml = out.report["totals"]["bead_volume_ml"].get<double>();
@@ -389,14 +395,18 @@ CurvedProduced produce_on_mesh(const slicer::Toolpath& t, const slicer::Substrat
   MeshJob job = plan_mesh_job(t, s, m, tol, output);
   CurvedProduced out;
   out.program = std::move(job.plan.program);
-  const nlohmann::json robot = check_robot(out.program, m);
+  nlohmann::json robot = check_robot(out.program, m);
+  const machines::TransitPlan transit = plan_robot_transit(
+      out.program, m,
+      machines::mesh_workpiece(slicer::read_mesh_file(s.mesh_path), printed_mm(out.program)), robot);
   out.report = std::move(job.report);
   out.report["parameters"]["arc-tolerance"] = tol;
   out.report["robot"] = robot;
-  write_robot(out, job.placed, m, paths, job.header, tol);
+  write_robot(out, job.placed, m, paths, job.header, tol, transit);
   out.files.push_back(job.record_file);
   out.report["outputs"]["substrate_record"] = job.record_file.first;
-  out.summary = mesh_job_summary(out.report);
+  out.summary = mesh_job_summary(out.report) + transit_summary(transit);
+  out.summary += contact_speed_summary(out.report);  // issue 37
   return out;
 }
 
@@ -415,18 +425,25 @@ CurvedProduced produce_curved(const slicer::Toolpath& t, const slicer::Substrate
   CurvedProduced out;
   out.program = plan_poses(placed, cylinder, machines::holder_of(m), plan_options(placed, m, tol));
   nlohmann::json robot;
-  if (m.robot.enabled) robot = check_robot(out.program, m);
+  machines::TransitPlan transit;
+  if (m.robot.enabled) {
+    robot = check_robot(out.program, m);
+    transit = plan_robot_transit(
+        out.program, m,
+        machines::cylinder_workpiece(s.radius_mm, s.length_mm, printed_mm(out.program)), robot);
+  }
   if (m.rotary.enabled) check_rotary(out.program, m, s);
   out.report = pose_report(placed, s, m, out.program);
   out.report["parameters"]["arc-tolerance"] = tol;
   const std::vector<std::string> header = header_lines(placed, s, m, tol);
   if (m.robot.enabled) {
     out.report["robot"] = robot;
-    write_robot(out, placed, m, paths, header, tol);
+    write_robot(out, placed, m, paths, header, tol, transit);
   } else {
     write_rotary(out, placed, m, paths, header);
   }
   out.summary = pose_summary(out.report);
+  if (m.robot.enabled) out.summary += transit_summary(transit);
   return out;
 }
 

@@ -141,6 +141,14 @@ MeshJob plan_mesh_job(const slicer::Toolpath& t, const slicer::SubstrateSpec& s,
       {"rotation_about_nozzle_deg",
        {round_to(job.plan.rotation_min_deg, 2), round_to(job.plan.rotation_max_deg, 2)}},
       {"max_tilt_deg", round_to(job.plan.max_tilt_deg, 2)},
+      {"offset_surface",
+       {{"worst_deposit_mm", round_to(job.plan.worst_offset_mm, 4)},
+        {"worst_deposit_row", job.plan.worst_offset_row},
+        {"max_raise_mm", round_to(job.plan.max_raise_mm, 4)},
+        {"rule",
+         "layer k's contact points (k + 1) h from the faceted mesh, raised along the "
+         "interpolated vertex normal at their foot where the mesh is concave; every row's "
+         "normal the interpolated vertex normal where the line along it meets the mesh"}}},
       {"nozzle_cone",
        {{"half_angle_deg", cone.half_angle_deg},
         {"length_mm", cone.length_mm},
@@ -198,6 +206,13 @@ std::string mesh_job_summary(const nlohmann::json& r) {
     << " deg from the mesh's facing, turned " << fmt_fixed(lo, 1)
     << (hi - lo >= 0.05 ? ".." + fmt_fixed(hi, 1) : std::string())
     << " deg about the nozzle axis\n";
+  const auto& surface = plan.at("offset_surface");
+  o << "  offsets        deposits within "
+    << fmt_fixed(surface.at("worst_deposit_mm").get<double>(), 4)
+    << " mm of their layer's offset surface (worst: row "
+    << surface.at("worst_deposit_row").get<std::size_t>() << "), raised up to "
+    << fmt_fixed(surface.at("max_raise_mm").get<double>(), 3)
+    << " mm along the normal over concave facets\n";
   o << "  deposited      " << fmt_fixed(tot.at("deposit_length_mm").get<double>() / 1000.0, 3)
     << " m on the surface, " << tot.at("poses").get<int>() << " poses\n";
   o << "  time           " << clock_text(tot.at("time_s").get<double>()) << "\n";

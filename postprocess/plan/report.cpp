@@ -92,6 +92,21 @@ std::string summary_text(const nlohmann::json& r) {
     if (d.contains("porosity_thesis")) o << " (thesis formula " << machines::fmt_fixed(100.0 * d["porosity_thesis"].get<double>(), 1) << " %)";
     o << "\n";
   }
+  // Graded or scheduled scaffolds: porosity per zone, "x 0-7.5 mm 61.2 %" or "layers 0-4 58.0 %".
+  for (const char* key : {"porosity_zones", "porosity_by_schedule"}) {
+    if (!d.contains(key)) continue;
+    o << (std::string(key) == "porosity_zones" ? "  zones         " : "  scheduled     ");
+    for (const auto& z : d[key]) {
+      if (z.contains("axis")) {
+        o << " " << z["axis"].get<std::string>() << " " << slicer::short_number(std::round(z["from_mm"].get<double>() * 100) / 100)
+          << "-" << slicer::short_number(std::round(z["to_mm"].get<double>() * 100) / 100) << " mm";
+      } else {
+        o << " layers " << z["layers"].get<std::string>();
+      }
+      o << " " << machines::fmt_fixed(100.0 * z["porosity"].get<double>(), 1) << " %" << (&z == &d[key].back() ? "" : ",");
+    }
+    o << "\n";
+  }
   o << "  deposited      " << machines::fmt_fixed(tot.at("deposit_length_mm").get<double>() / 1000.0, 3) << " m, ink "
     << machines::fmt_fixed(tot.at("ink_volume_ml").get<double>(), 2) << " mL ("
     << machines::fmt_fixed(tot.at("syringe_fills").get<double>(), 2) << " fills of the "

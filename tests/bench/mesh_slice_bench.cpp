@@ -8,7 +8,7 @@
 
 #include <filesystem>
 
-#include "cli/slice_job.h"
+#include "jobs/slice_job.h"
 #include "tests/support/mesh_shapes.h"
 
 namespace {
@@ -20,13 +20,13 @@ void BM_SliceTorus100kInto200Layers(benchmark::State& state) {
                                .string();
   const slicer::Mesh torus = testing::torus_mesh(45.0, 30.0, 500, 100);  // 100,000 triangles
   testing::write_binary_stl(torus, path);
-  cli::SliceSettings s;
+  jobs::SliceSettings s;
   s.part = path;
   s.pattern_values = {{"nozzle", 0.4}, {"pitch", 2.0}, {"layer-height", 0.3}};
   s.machine = "marlin-xyz-200";
   std::size_t layers = 0, bytes = 0;
   for (auto _ : state) {
-    const cli::SliceResult r = cli::produce_slice(s);
+    const jobs::SliceResult r = jobs::produce_slice(s);
     layers = r.toolpath.derived.at("layers").get<std::size_t>();
     bytes = r.produced.gcode.size();
     benchmark::DoNotOptimize(r.produced.gcode.data());

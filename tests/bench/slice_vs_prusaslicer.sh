@@ -3,9 +3,11 @@
 # layers of 0.3 mm, 0.4 mm nozzle, rectilinear infill at the scaffold's spacing (2 mm).
 # Wall time, CPU time (user, all threads) and peak memory from /usr/bin/time; on a loaded
 # machine compare the CPU times. PrusaSlicer is not a build dependency:
-# install it for the comparison only (apt-get install prusa-slicer).
+# install it for the comparison only (apt-get install prusa-slicer). Then the public mesh corpus
+# side by side (slice_vs_prusaslicer.py: layers, strands per layer, deposit inside the part).
 # Usage: tests/bench/slice_vs_prusaslicer.sh BUILD_DIR [WORK_DIR]
 set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
 build="$(cd "$1" && pwd)"
 work="${2:-$(mktemp -d)}"
 mkdir -p "$work"
@@ -30,3 +32,4 @@ else
   echo "prusa-slicer     not installed (apt-get install prusa-slicer)"
 fi
 ls -l ./*.gcode | awk '{print $5, $9}'
+python3 "$here/slice_vs_prusaslicer.py" "$build/cli/strand" --work "$work/corpus"

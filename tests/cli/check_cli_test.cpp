@@ -185,6 +185,43 @@ TEST(CheckCliDialects, AVitaprintScaffoldChecksAsItsFiveLayersWithoutCrossings) 
   EXPECT_TRUE(j["parse_issues"].empty());
 }
 
+// Issue 29: a file whose last marked layer only travels (lifted, then moved aside; a
+// bioprinter's park move) has five layers, not six; the sixth is counted apart.
+TEST(CheckCliDialects, ATravelOnlyLastLayerIsNotCountedAsALayer) {
+  const auto dir = fresh_dir("check-travel-layer");
+  std::string g = "G92 X0 Y0\n";
+  for (int k = 0; k < 5; ++k) {
+    g += ";LAYER:" + std::to_string(k) + "\nG0 X0 Y0 Z" + std::to_string(0.2 * (k + 1)) +
+         "\nG1 X8 E" + std::to_string(k + 1) + "\n";
+  }
+  write(dir + "/park.gcode", g + ";LAYER:5\nG0 Z10\nG0 X50 Y50\n");
+  const auto r = run_strand("check park.gcode", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.out.rfind("5 layers, ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("1 layer with moves but no deposit, not counted as a layer: 5"),
+            std::string::npos)
+      << r.out;
+  const auto j = nlohmann::json::parse(run_strand("check park.gcode --json", dir).out);
+  EXPECT_EQ(j["layers"].size(), 5u);
+  EXPECT_EQ(j["layers_without_deposit"].get<int>(), 1);
+}
+
+// Issue 29: a file of travels alone (a slice of nothing) is not a print: exit 1 under the
+// diw rules, with the line that says why.
+TEST(CheckCli, AFileWithoutDepositFailsUnderDiwRules) {
+  const auto dir = fresh_dir("check-no-deposit");
+  write(dir + "/empty.gcode", "G28\nG21\nG90\nG0 X0 Y0 Z5\nG28\n");
+  const auto r = run_strand("check empty.gcode --machine deltawasp-2040-clay", dir);
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("no deposit: not one of the"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("check: FAILED"), std::string::npos) << r.out;
+  const auto fdm = run_strand("check empty.gcode --rules fdm", dir);
+  EXPECT_EQ(fdm.exit_code, 0) << fdm.out;
+  const auto j = nlohmann::json::parse(run_strand("check empty.gcode --json", dir).out);
+  EXPECT_EQ(j["deposit_moves"].get<int>(), 0);
+  EXPECT_FALSE(j["ok"].get<bool>());
+}
+
 TEST(CheckCliDialects, DivisionByZeroAndAnEndlessLoopExitTwoNamingTheLine) {
   const auto dir = fresh_dir("check-ngc-bad");
   write(dir + "/div.gcode", "G1 X1 Y1 Z0.2\n#<layers> = 0\nG1 Z[1 / #<layers>]\n");

@@ -106,7 +106,7 @@ TEST(ProgressCli, EveryLongCommandReportsItsPhases) {
     std::string args, must_show;
   };
   const Case cases[] = {
-      {"check s.gcode", "check: 3/3 checking 2 layers ("},
+      {"check s.gcode", "check: 3/3 checked 2 layers ("},
       {"preview s.gcode -o p.png", "preview: 3/3 drawing ("},
       {"plot '" + src + "/samples/plot/lines.svg' --fit 50x50 -o l.gcode", "plot: "},
       {"trace '" + src + "/samples/plot/photo.png' -o t.svg", "trace: 2/3 tracing ("},

@@ -1,7 +1,7 @@
 // The slice pipeline on 50 random boxes, cylinders and tori: every layer crossing-free by
 // `strand check`'s own analysis, pattern strands per layer within the bound, deposited
 // porosity near the pattern's own.
-#include "cli/slice_job.h"
+#include "jobs/slice_job.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include "tests/support/cli_runner.h"
 #include "tests/support/mesh_shapes.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 namespace {
 
 // Strands per layer never exceed this many per connected region of the layer (plus one
@@ -69,4 +69,4 @@ TEST(SliceJob, RandomShapesAreCrossingFreeWithFewStrands) {
 }
 
 }  // namespace
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -5,9 +5,11 @@
 # Usage: tests/fuzz/run_fuzzers.sh BUILD_DIR SECONDS
 set -euo pipefail
 # An input counts as a hang past HANG_SECONDS: ASan + UBSan run 3-10x slower than the release
-# build, so 30 s here is the release build's few seconds (e.g. the <use>-doubling regression:
-# 0.5 s release, 5-7 s here on a loaded 2-core machine).
-HANG_SECONDS=30
+# build, and up to 70x on byte-by-byte parsing, so 60 s here is the release build's second (e.g.
+# the <use>-doubling regression: 0.5 s release, 5-7 s here on a loaded 2-core machine; an
+# O-word loop that never changes its counter, seed 1's unit 18,807 of gcode_fuzz, runs into
+# the 1,000,000-line repeat bound in 0.36 s release and 26-41 s here).
+HANG_SECONDS=60
 build="$1"
 seconds="$2"
 src="$(cd "$(dirname "$0")/../.." && pwd)"

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "machines/profile.h"
 #include "slicer/input_error.h"
+#include "slicer/tolerances.h"
 #include "tests/support/cli_runner.h"
 
 namespace strand::cli {
@@ -23,6 +25,24 @@ TEST(JobRunner, ProduceJobIsWhatRunJobWrites) {
   run_job(*spec.generator, spec.params, spec.settings);
   EXPECT_EQ(strand::testing::slurp(dir + "/a.gcode"), produced.gcode);
   EXPECT_EQ(nlohmann::json::parse(strand::testing::slurp(dir + "/a.json")), produced.report);
+}
+
+// Issue 29: nothing deposited is never a file (the slice's own message is more specific;
+// this guards every job, the slice's and the generators').
+TEST(JobRunner, AProducedFileWithoutDepositIsRefused) {
+  const auto machine = machines::load_profile("deltawasp-2040-clay");
+  post::Produced empty;
+  empty.report = {{"generator", "slice"},
+                  {"totals", {{"deposit_length_mm", 0.0}, {"layers", 7}}}};
+  try {
+    vet_produced(empty, machine, slicer::kDefaultArcToleranceMm);
+    ADD_FAILURE() << "an empty file passed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "slice: every layer is empty (7 layers, nothing deposited)");
+  }
+  JobSpec spec = job_spec_from_json(kJob, "job");
+  const auto produced = produce_job(*spec.generator, spec.params, spec.settings);
+  EXPECT_NO_THROW(vet_produced(produced, machine, slicer::kDefaultArcToleranceMm));
 }
 
 TEST(JobRunner, DefaultOutputIsNamedAfterTheGenerator) {

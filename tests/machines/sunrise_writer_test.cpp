@@ -9,10 +9,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <map>
 #include <sstream>
 
 #include "machines/builtin_profiles.h"
+#include "machines/contact_speed.h"
 #include "machines/extruder_gcode.h"
 #include "machines/joint_analysis.h"
 #include "machines/krl_writer.h"
@@ -23,6 +25,7 @@
 #include "slicer/input_error.h"
 #include "slicer/units.h"
 #include "tests/support/cli_runner.h"
+#include "tests/support/mesh_shapes.h"
 
 namespace strand::machines {
 namespace {
@@ -147,8 +150,15 @@ void expect_application_follows_the_csv(const std::string& job_args,
   std::vector<std::string> kinds;
   std::istringstream in(run.out);
   std::size_t next_row = 0, lins = 0, ptps = 0, accelerated = 0;
-  int signals = 0, lap = -1;
+  bool approached = false;
+  int signals = 0, lap = -1, resets = 0;
   std::string last_ready;
+  const std::string idle = handshake_idle_level(m.robot) == 1 ? "true" : "false";
+  // The contact point's speed at the commanded speeds (issue 37), from the targets alone.
+  Eigen::Isometry3d previous_flange = Eigen::Isometry3d::Identity();
+  double worst_ratio = 1.0;
+  int deposit_moves = 0;
+  std::map<int, double> lap_program_s, lap_csv_s;
   for (std::string line; std::getline(in, line);) {
     std::istringstream w(line);
     std::string kind, name;
@@ -177,15 +187,27 @@ void expect_application_follows_the_csv(const std::string& job_args,
       for (int i = 0; i < 7; ++i) w >> q[i];
       EXPECT_NEAR(rel, m.robot.motion.ptp_velocity_percent / 100.0, 1e-12);
       ++ptps;
-      if (ptps == 2) {  // the approach: approach_mm off the first pose, by axis values
+      if (ptps == 2) {  // the clearance pose: clearance_mm off the first pose, by axis values
         const Eigen::Isometry3d f = forward_kinematics(arm, q);
-        expect_flange(f, moved_along_nozzle(m.robot, rows[0], m.robot.motion.approach_mm), 0);
+        expect_flange(f, moved_along_nozzle(m.robot, rows[0], m.robot.motion.clearance_mm), 0);
       } else {  // home, first and last
         for (int i = 0; i < 7; ++i)
           EXPECT_NEAR(q[i], slicer::deg_to_rad((*m.robot.motion.home_joints_deg)[i]), 1e-6);
       }
     } else if (kind == "READY") {
       last_ready = name;
+    } else if (kind == "SIGNAL" && resets == 0) {
+      // Issue 29: before lap 0 the lap signal goes to the level before lap 0 (the extruder
+      // waits for it).
+      EXPECT_EQ(name, idle) << "the handshake reset comes first";
+      EXPECT_EQ(next_row, 1u) << "the reset is right before lap 0";
+      ++resets;
+      last_ready.clear();
+    } else if (kind == "SIGNAL" && next_row == rows.size()) {
+      // After the last lap: back to the level before lap 0 once the extruder has reset.
+      EXPECT_EQ(name, idle);
+      EXPECT_EQ(last_ready, idle) << "the robot waited for the extruder's reset";
+      ++resets;
     } else if (kind == "SIGNAL") {
       // The extruder waits for the level of the lap that starts next: it must come before
       // that lap's first motion, and after the extruder said it was ready with that level.
@@ -218,9 +240,16 @@ void expect_application_follows_the_csv(const std::string& job_args,
         ++accelerated;
       }
       ++lins;
-      if (next_row == rows.size()) {  // the retract
-        expect_flange(flange, moved_along_nozzle(m.robot, rows.back(), m.robot.motion.retract_mm),
-                      next_row);
+      if (next_row == 0 && !approached) {  // from the clearance pose to the approach
+        expect_flange(flange, moved_along_nozzle(m.robot, rows[0], m.robot.motion.approach_mm), 0);
+        approached = true;
+        previous_flange = flange;
+        continue;
+      }
+      if (next_row >= rows.size()) {  // the retract, then the clearance pose
+        const double away = next_row == rows.size() ? m.robot.motion.retract_mm
+                                                    : m.robot.motion.clearance_mm;
+        expect_flange(flange, moved_along_nozzle(m.robot, rows.back(), away), next_row);
         EXPECT_NEAR(speed, m.robot.travel_speed_mm_per_s, 1e-9);
         ++next_row;
         continue;
@@ -230,9 +259,27 @@ void expect_application_follows_the_csv(const std::string& job_args,
       EXPECT_EQ(name, "Contact" + std::to_string(row.layer));
       if (next_row > 0) {
         EXPECT_EQ(row.lap, lap) << "row " << next_row << " moves before its lap's signal";
-        EXPECT_NEAR(speed, row.speed_mm_per_s, 1e-9);
+        // The moved frame's chord from where the last motion left the arm, in the time the
+        // commanded speed takes; the contact point (the nozzle tip in the workpiece) in it.
+        const Eigen::Isometry3d& moved = contact_in_flange.at(name);
+        const double frame_chord =
+            ((flange * moved).translation() - (previous_flange * moved).translation()).norm();
+        const auto contact_of = [&](const Eigen::Isometry3d& f) {
+          return Vec3((f * workpiece_in_flange(m.robot)).inverse() * m.robot.nozzle_tip_mm);
+        };
+        const double contact_chord = (contact_of(flange) - contact_of(previous_flange)).norm();
+        if (contact_chord > 1e-3) {  // a turn in place is off the time line by design
+          lap_program_s[row.lap] += frame_chord / speed;
+          lap_csv_s[row.lap] += row.t_s - rows[next_row - 1].t_s;
+        }
+        if (row.extrude && contact_chord >= kContactSpeedMinChordMm) {
+          const double ratio = contact_chord / (frame_chord / speed) / row.speed_mm_per_s;
+          if (std::abs(ratio - 1.0) > std::abs(worst_ratio - 1.0)) worst_ratio = ratio;
+          ++deposit_moves;
+        }
       }
       expect_flange(flange, row, next_row);
+      previous_flange = flange;
       ++next_row;
     }
   }
@@ -240,8 +287,18 @@ void expect_application_follows_the_csv(const std::string& job_args,
   EXPECT_EQ(accelerated, rows.size() - 1) << "every lap motion at the profile's acceleration";
   EXPECT_EQ(kinds.back(), "PTP_JOINTS") << "home last";
   EXPECT_EQ(ptps, 3u) << "home, approach, home";
-  EXPECT_EQ(lins, rows.size() + 1) << "onto the first pose, one lin per later row, the retract";
+  EXPECT_EQ(lins, rows.size() + 3)
+      << "to the approach, onto the first pose, one lin per later row, the retract and the "
+         "clearance pose";
   EXPECT_GE(signals, 2);
+  EXPECT_EQ(resets, 2) << "before lap 0 and after the last lap";
+  EXPECT_GT(deposit_moves, 20);
+  EXPECT_NEAR(worst_ratio, 1.0, 0.02) << "the contact point at the planned speed";
+  for (const auto& [k, s] : lap_csv_s) {
+    EXPECT_NEAR(lap_program_s[k] / s, 1.0, 0.02) << "lap " << k << " against the extruder's";
+  }
+  std::cout << "  Sunrise: " << deposit_moves << " deposit moves, worst contact / planned speed "
+            << worst_ratio << "\n";
   EXPECT_LT(worst_mm, 0.01) << "worst at CSV row " << worst_row;
   EXPECT_LT(worst_rad, 1.75e-4) << "0.01 deg; worst at CSV row " << worst_row;
 }
@@ -278,6 +335,16 @@ TEST(SunriseWriter, ToolTemplateAndNozzleFrameFromTheProjectRunAsTheCsvSays) {
       "scaffold --nozzle 0.8 --gap 1.5 --size 20x20 --layers 2 --substrate cylinder "
       "--substrate-radius 25 --substrate-length 60",
       {{"tool_template", "Cyl_40"}, {"tool_frame", "/Cylinder"}});
+}
+
+
+TEST(SunriseWriter, OnAConcaveMeshTheContactPointMovesAtThePlannedSpeed) {
+  // Issue 37: the moved frame is a point of the workpiece; where the workpiece tilts its
+  // speed is scaled so the contact point keeps the row's speed (ratios 0.07-1.84 before).
+  const std::string dir = testing::fresh_dir("bowl");
+  expect_application_follows_the_csv(
+      "scaffold --nozzle 0.8 --gap 1.5 --size 20x20 --layers 2 --substrate mesh "
+      "--substrate-mesh " + quoted(testing::write_concave_bowl_obj(dir)));
 }
 
 const char* const kScaffold =

@@ -98,16 +98,21 @@ bool ur_known_line(const std::string& line) {
       std::regex(R"(  textmsg\("[ !#-\[\]-~]*"\))"),
       std::regex("  set_payload\\(" + n + ", \\[" + n + ", " + n + ", " + n + "\\]\\)  # [ -~]*"),
       std::regex("  movej\\(" + joints + ", a=" + n + ", v=" + n +
-                 "\\)  # (home|approach: [ -~]*)"),
+                 "\\)  # (home|clearance pose: [ -~]*)"),
       std::regex("  set_tcp\\(" + ur_pose_re() + "\\)  # layer [0-9]+ contact frame"),
       std::regex("  movel\\(" + ur_pose_re() + ", a=" + n + ", v=" + n + ", r=(0|" + n +
-                 ")\\)(  # onto the first pose|  # retract along the nozzle axis)?"),
+                 ")\\)(  # onto the first pose|  # retract along the nozzle axis|  # approach: [ -~]*|  # clearance pose: [ -~]*)?"),
       std::regex(R"(  # lap [0-9]+)"),
       std::regex(
           R"(  while \(get_standard_digital_in\([0-7]\) != (True|False)\):  # the extruder is ready for lap [0-9]+)"),
       std::regex(R"(    sync\(\))"),
       std::regex(R"(  end)"),
       std::regex(R"(  set_standard_digital_out\([0-7], (True|False)\)  # lap [0-9]+ starts)"),
+      // Issue 29: the handshake reset before lap 0.
+      std::regex(R"(  # handshake reset[ -~]*)"),
+      std::regex(R"(  set_standard_digital_out\([0-7], (True|False)\)  # reset)"),
+      std::regex(
+          R"(  while \(get_standard_digital_in\([0-7]\) != (True|False)\):  # the extruder has finished and reset)"),
       std::regex(R"(end)"),
   };
   for (const auto& f : kForms)
@@ -146,7 +151,7 @@ void expect_urscript_follows_the_csv(const std::string& job_args) {
   const std::regex out(
       R"(  set_standard_digital_out\(([0-7]), (True|False)\)  # lap ([0-9]+) starts)");
   std::istringstream in(script);
-  std::size_t row = 0, movejs = 0, movels = 0, waits = 0, laps = 0;
+  std::size_t row = 0, movejs = 0, movels = 0, waits = 0, laps = 0, resets = 0;
   double worst_mm = 0.0, worst_rad = 0.0, worst_speed = 0.0;
   Eigen::Isometry3d tcp_in_workpiece = Eigen::Isometry3d::Identity();
   bool have_tcp = false, retracted = false;
@@ -170,9 +175,9 @@ void expect_urscript_follows_the_csv(const std::string& job_args) {
     if (std::regex_match(line, g, movej)) {
       Joints q = Joints::Zero();
       for (int i = 0; i < 6; ++i) q[i] = std::stod(g[i + 1]);
-      if (g[7].str().rfind("approach", 0) == 0) {
+      if (g[7].str().rfind("clearance pose", 0) == 0) {
         const Eigen::Isometry3d f = forward_kinematics(arm, q);
-        const auto a = moved_along_nozzle(m.robot, rows[0], m.robot.motion.approach_mm);
+        const auto a = moved_along_nozzle(m.robot, rows[0], m.robot.motion.clearance_mm);
         const Eigen::Isometry3d want =
             flange_pose(m.robot, a.workpiece_origin_mm, a.workpiece_wxyz);
         EXPECT_LT((f.translation() - want.translation()).norm(), 0.01);
@@ -190,6 +195,9 @@ void expect_urscript_follows_the_csv(const std::string& job_args) {
       EXPECT_TRUE(tcp_in_workpiece.linear().isApprox(Eigen::Matrix3d::Identity(), 1e-6));
       EXPECT_LT(std::abs(tcp_in_workpiece.translation().y()), 1e-3);
       have_tcp = true;
+    } else if (line.find("reset") != std::string::npos) {
+      // Issue 29: before lap 0, both lines to the level before lap 0 (robot_handshake_test).
+      ++resets;
     } else if (std::regex_match(line, g, wait)) {
       pending_wait = g[2];
       EXPECT_EQ(std::stoi(g[1]), m.robot.programs.ur_ready_input);
@@ -204,6 +212,14 @@ void expect_urscript_follows_the_csv(const std::string& job_args) {
       if (g[8] == "  # onto the first pose") {
         expect_pose(target, rows[0]);
         previous = target;
+        continue;
+      }
+      if (g[8].str().rfind("  # approach", 0) == 0) {
+        expect_pose(target, moved_along_nozzle(m.robot, rows[0], m.robot.motion.approach_mm));
+        continue;
+      }
+      if (g[8].str().rfind("  # clearance pose", 0) == 0) {
+        expect_pose(target, moved_along_nozzle(m.robot, rows.back(), m.robot.motion.clearance_mm));
         continue;
       }
       if (g[8] == "  # retract along the nozzle axis") {
@@ -226,10 +242,11 @@ void expect_urscript_follows_the_csv(const std::string& job_args) {
       ++movels;
     }
   }
-  EXPECT_EQ(movejs, 3u) << "home, approach, home";
+  EXPECT_EQ(movejs, 3u) << "home, clearance pose, home";
   EXPECT_TRUE(retracted);
   EXPECT_GE(laps, 2u);
   EXPECT_EQ(waits, laps);
+  EXPECT_EQ(resets, 5u) << "before lap 0 comment and output, after the last comment, wait, output";
   EXPECT_GT(movels, rows.size() / 2);
   EXPECT_LT(worst_mm, 0.01);
   EXPECT_LT(worst_rad, 1.75e-4);

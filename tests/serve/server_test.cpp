@@ -258,6 +258,10 @@ TEST_F(ServerTest, DesignPageShowsTheSummaryOfItsUrl) {
   const auto three = strand::testing::run_chromium(dir_, "--virtual-time-budget=15000 --dump-dom", base + "3");
   EXPECT_NE(three.out.find("layers         3,"), std::string::npos) << three.out;
   EXPECT_FALSE(strand::testing::has_console_output(three.log)) << three.log;
+  // an on/off parameter is a checkbox, set from the URL and sent as on: --stagger's layers
+  const auto staggered = strand::testing::run_chromium(dir_, "--virtual-time-budget=15000 --dump-dom", base + "4&stagger=true");
+  EXPECT_NE(staggered.out.find("id=\"p-stagger\" name=\"stagger\" type=\"checkbox\""), std::string::npos) << staggered.out;
+  EXPECT_NE(staggered.out.find("filaments      [9,9,8,8] per layer"), std::string::npos) << staggered.out;
   // an invalid value: the CLI's message next to its field
   const std::string bad_url = "http://127.0.0.1:" + std::to_string(port_) +
                               "/?generator=scaffold&machine=deltawasp-2040-clay&nozzle=-1&gap=1.6&size=20x20&layers=2";

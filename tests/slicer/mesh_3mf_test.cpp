@@ -377,5 +377,70 @@ TEST(Read3mf, ComponentsInAnotherModelPartAreFound) {
   EXPECT_NEAR(signed_volume_mm3(m), 2000.0, 1e-3);
 }
 
+// ---- Extensions the reader does not know are ignored, as PrusaSlicer does, unless the
+// file requires them (issue 29).
+
+// The 3MF Consortium's Materials samples (tests/data/README.md): a 10 cm cube with base
+// materials, textures, multiproperties and display properties whose `ms:` elements use a
+// prefix no xmlns declares. lib3mf stopped on it ("Could not get XML Namespace").
+TEST(Read3mf, ConsortiumMaterialsSamplesReadTheirGeometry) {
+  for (const char* name : {"multiprop-metallic.3mf", "multiprop-translucent.3mf"}) {
+    const Mesh m = read_mesh_file(std::string(STRAND_SOURCE_DIR) + "/tests/data/" + name);
+    EXPECT_EQ(m.triangles.size(), 12u) << name;
+    EXPECT_EQ(m.vertices_mm.size(), 8u) << name;
+    EXPECT_NEAR(bounds(m).size_mm().x(), 100.0, 1e-6) << name << ": 10 cm";
+    EXPECT_NEAR(signed_volume_mm3(m), 1e6, 1e-3) << name << ": outward facing";
+  }
+}
+
+// A model whose root carries `root_attrs` and whose resources add `extra` after the cube.
+std::string extended_model(const std::string& root_attrs, const std::string& extra) {
+  return R"(<?xml version="1.0" encoding="UTF-8"?>
+<model unit="millimeter" xmlns="http://schemas.microsoft.com/3dmanufacturing/core/2015/02" )" +
+         root_attrs + "><resources><object id=\"1\" type=\"model\">" + cube_mesh() +
+         "</object>" + extra + "</resources><build><item objectid=\"1\"/></build></model>";
+}
+
+TEST(Read3mf, UnknownExtensionsAreIgnoredUnlessRequired) {
+  const auto dir = testing::fresh_dir("3mf-extensions");
+  const std::string q = "xmlns:q=\"http://example.com/3mf/unknown/2024\"";
+  const std::string m = "xmlns:m=\"http://schemas.microsoft.com/3dmanufacturing/material/2015/02\"";
+  const std::string foreign = "<q:thing q:size=\"3\"><q:part/></q:thing>";
+  const std::string undeclared =
+      "<zz:displayproperties id=\"5\"><zz:pbr zz:value=\"1\"/></zz:displayproperties>";
+  // Declared but unknown, and a prefix nobody declares: both ignored, the cube read.
+  for (const auto& [name, xml] : std::vector<std::pair<std::string, std::string>>{
+           {"unknown.3mf", extended_model(q, foreign)},
+           {"undeclared.3mf", extended_model(m, undeclared)},
+           {"materials-required.3mf",
+            extended_model(m + " requiredextensions=\"m\"", undeclared)}}) {
+    const Mesh mesh = read_mesh_file(write_3mf(dir, name, xml));
+    EXPECT_EQ(mesh.triangles.size(), 12u) << name;
+  }
+  expect_refused(write_3mf(dir, "required.3mf",
+                           extended_model(q + " requiredextensions=\"q\"", foreign)),
+                 "the file requires the 3MF extension http://example.com/3mf/unknown/2024 "
+                 "(requiredextensions 'q'), which Strand does not read");
+  expect_refused(write_3mf(dir, "required-undeclared.3mf",
+                           extended_model("requiredextensions=\"zz\"", "")),
+                 "requires the extension of prefix 'zz', which no xmlns:zz declares");
+  // The same through the CLI: exit 2, one line, no output.
+  const auto r = testing::run_strand("slice required.3mf --nozzle 0.6 --gap 1 -o out.gcode", dir);
+  testing::expect_input_error(r, "requiredextensions 'q'");
+  EXPECT_FALSE(testing::exists(dir + "/out.gcode"));
+}
+
+TEST(Read3mf, SliceCommandSlicesAConsortiumMaterialsSample) {
+  const auto dir = testing::fresh_dir("3mf-multiprop-slice");
+  const auto r = testing::run_strand(
+      "slice '" + std::string(STRAND_SOURCE_DIR) +
+          "/tests/data/multiprop-metallic.3mf' --scale 0.2 --nozzle 0.84 --gap 1.6 -o cube.gcode",
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("part 20.000 x 20.000 x 20.000 mm"), std::string::npos) << r.out;
+  EXPECT_EQ(testing::run_strand("check cube.gcode --machine deltawasp-2040-clay", dir).exit_code,
+            0);
+}
+
 }  // namespace
 }  // namespace strand::slicer

@@ -96,6 +96,73 @@ Mesh torus_mesh(double R, double r, int nu, int nv) {
   return m;
 }
 
+namespace {
+
+// `part` moved by `at` (after turning its z axis to `axis`), inside out when `cavity`, added.
+void append(Mesh& m, const Mesh& part, const Vec3& at, bool cavity, const Eigen::Matrix3d& turn) {
+  const int base = static_cast<int>(m.vertices_mm.size());
+  for (const Vec3& v : part.vertices_mm) m.vertices_mm.push_back(turn * v + at);
+  for (auto t : part.triangles) {
+    if (cavity) std::swap(t[1], t[2]);
+    m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+}
+
+const Eigen::Matrix3d kUpright = Eigen::Matrix3d::Identity();
+
+Mesh sphere_mesh(double r, int rings, int segments) {
+  Mesh m;
+  const int south = add(m, Vec3(0, 0, -r));
+  for (int i = 1; i < rings; ++i) {
+    const double lat = -slicer::kPi / 2 + slicer::kPi * i / rings;
+    for (int j = 0; j < segments; ++j) {
+      const double lon = slicer::kTwoPi * j / segments;
+      add(m, r * Vec3(std::cos(lat) * std::cos(lon), std::cos(lat) * std::sin(lon), std::sin(lat)));
+    }
+  }
+  const int north = add(m, Vec3(0, 0, r));
+  auto id = [&](int i, int j) { return 1 + (i - 1) * segments + (j % segments); };
+  for (int j = 0; j < segments; ++j) {
+    m.triangles.push_back({south, id(1, j + 1), id(1, j)});
+    m.triangles.push_back({north, id(rings - 1, j), id(rings - 1, j + 1)});
+    for (int i = 1; i + 1 < rings; ++i) quad(m, id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j));
+  }
+  return m;
+}
+
+}  // namespace
+
+Mesh holed_plate_mesh() {
+  Mesh m = box_mesh(Vec3(30, 20, 3));
+  append(m, tube_mesh(2.8, 0, 3, 48), Vec3(13.6, 9.9, 0), true, kUpright);
+  append(m, tube_mesh(2.7, 0, 3, 48), Vec3(26.0, 14.4, 0), true, kUpright);
+  append(m, tube_mesh(2.8, 0, 3, 48), Vec3(21.5, 9.0, 0), true, kUpright);
+  return m;
+}
+
+Mesh genus3_block_mesh() {
+  Mesh m = box_mesh(Vec3(30, 24, 12));
+  append(m, tube_mesh(2.6, 0, 12, 48), Vec3(16.0, 7.5, 0), true, kUpright);
+  append(m, tube_mesh(2.0, 0, 12, 48), Vec3(22.9, 6.1, 0), true, kUpright);
+  Eigen::Matrix3d along_x;  // the tube's axis turned to x (x, y, z -> z, x, y)
+  along_x << 0, 0, 1, 1, 0, 0, 0, 1, 0;
+  append(m, tube_mesh(2.0, 0, 30, 48), Vec3(0, 19.7, 8.0), true, along_x);
+  return m;
+}
+
+Mesh swiss_cheese_block_mesh() {
+  Mesh m = box_mesh(Vec3(30, 24, 14));
+  append(m, tube_mesh(2, 0, 14, 40), Vec3(6, 6, 0), true, kUpright);
+  append(m, tube_mesh(3, 0, 14, 40), Vec3(15, 17, 0), true, kUpright);
+  append(m, tube_mesh(1.5, 0, 14, 40), Vec3(25, 7, 0), true, kUpright);
+  const double cavities[8][4] = {{11, 7, 4, 2.5}, {21, 12, 5, 3},   {6, 16, 9, 2},
+                                 {25, 19, 9, 2},  {14, 9, 10, 1.5}, {20, 4, 11, 2},
+                                 {9, 20, 4, 1.8}, {19, 6, 3, 1.5}};
+  for (const auto& c : cavities)
+    append(m, sphere_mesh(c[3], 12, 24), Vec3(c[0], c[1], c[2]), true, kUpright);
+  return m;
+}
+
 Mesh plate_mesh(double w, double d, double sag, int nx, int ny) {
   Mesh m;
   for (int j = 0; j <= ny; ++j) {
@@ -262,6 +329,26 @@ void write_off(const Mesh& m, const std::string& path) {
   for (const Vec3& v : m.vertices_mm) o << v.x() << " " << v.y() << " " << v.z() << "\n";
   for (const auto& t : m.triangles) o << "3 " << t[0] << " " << t[1] << " " << t[2] << "\n";
   slicer::write_file_atomic(path, o.str());
+}
+
+std::string write_concave_bowl_obj(const std::string& dir) {
+  const std::string path = dir + "/bowl.obj";
+  std::ofstream o(path);
+  constexpr int kN = 7;
+  for (int i = 0; i < kN; ++i) {
+    for (int j = 0; j < kN; ++j) {
+      const double y = -15.0 + 5.0 * i, z = -15.0 + 5.0 * j;
+      o << "v " << 20.0 + (y * y + z * z) / 100.0 << " " << y << " " << 40.0 + z << "\n";
+    }
+  }
+  const auto id = [](int i, int j) { return i * kN + j + 1; };
+  for (int i = 0; i + 1 < kN; ++i) {
+    for (int j = 0; j + 1 < kN; ++j) {  // counter-clockwise in (y, z): normals along +x
+      o << "f " << id(i, j) << " " << id(i + 1, j) << " " << id(i + 1, j + 1) << "\n";
+      o << "f " << id(i, j) << " " << id(i + 1, j + 1) << " " << id(i, j + 1) << "\n";
+    }
+  }
+  return path;
 }
 
 }  // namespace strand::testing

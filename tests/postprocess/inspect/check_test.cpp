@@ -37,6 +37,34 @@ TEST(Check, CrossingIsAFailureWithItsPointAndLines) {
       << to_text(r);
 }
 
+// Issue 29: a file that deposits nothing fails under the diw rules and is said under the
+// others; a layer with moves but no deposit is counted apart, not as a layer.
+TEST(Check, NoDepositFailsDiwAndTravelOnlyLayersAreCountedApart) {
+  const auto empty = check("G28\nG0 X10 Y10 Z5\nG0 X0 Y0\n");
+  EXPECT_EQ(empty.deposit_moves, 0u);
+  EXPECT_FALSE(empty.ok());
+  EXPECT_NE(to_text(empty).find("no deposit: not one of the 2 moves deposits"), std::string::npos)
+      << to_text(empty);
+  CheckOptions fdm;
+  fdm.rules = RulesChoice{CheckRules::Fdm, "given"};
+  const auto said = check_gcode("G0 X10 Y10 Z5\n", fdm);
+  EXPECT_TRUE(said.ok());
+  EXPECT_NE(to_text(said).find("(said, not failed, under fdm rules)"), std::string::npos);
+  const auto r = check(";LAYER:0\nG0 X0 Y0 Z0.5\nG1 X10 E1\n;LAYER:1\nG0 X0 Y0 Z1\nG1 Y10 E2\n"
+                       ";LAYER:2\nG0 Z1.5\nG0 X50 Y50\n");
+  ASSERT_EQ(r.layers.size(), 2u);
+  EXPECT_EQ(r.layers[1].layer, 1);
+  EXPECT_EQ(r.layers_without_deposit, 1u);
+  EXPECT_EQ(r.layers_without_deposit_index, std::vector<int>{2});
+  EXPECT_TRUE(r.ok());
+  const std::string text = to_text(r);
+  EXPECT_EQ(text.rfind("2 layers, ", 0), 0u) << text;
+  EXPECT_NE(text.find("1 layer with moves but no deposit, not counted as a layer: 2"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(to_json(r).at("layers_without_deposit").get<int>(), 1);
+}
+
 TEST(Check, TouchIsReportedButPasses) {
   const auto r = check("G0 X0 Y0 Z0.5\nG1 X10\nG0 X5 Y5\nG1 X5 Y0\n");
   ASSERT_EQ(r.layers.size(), 1u);

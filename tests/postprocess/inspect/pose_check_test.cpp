@@ -13,25 +13,17 @@
 #include "slicer/units.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/sample_jobs.h"
+#include "tests/postprocess/inspect/curved_file_edits.h"
 
 namespace strand::post {
 namespace {
 
 using slicer::Vec3;
+using namespace curved_edits;
 
 const machines::MachineProfile& cell() {
   static const auto m = machines::load_profile("kuka-iiwa14-wasp-cylinder");
   return m;
-}
-
-std::string produced_main(const std::string& sample, const std::string& out) {
-  const auto j = nlohmann::json::parse(testing::slurp(testing::samples_dir() + "/" + sample));
-  const auto* g = patterns::find_generator(j.at("generator"));
-  const auto t = g->generate(slicer::resolve_params(g->table(), j.at("params")));
-  return produce_curved(t, *slicer::substrate_from(j.at("substrate")),
-                        machines::load_profile(j.at("machine")), 0.01, out)
-      .files.front()
-      .second;
 }
 
 const std::string& thesis_csv() {
@@ -145,22 +137,6 @@ TEST(PoseCheck, RotaryFilesMapBackOntoTheirCylinder) {
 
 // --- Tampering (issue 24): what a pose program promises, checked row by row ---
 
-std::size_t line_start(const std::string& text, std::size_t line) {  // 0-based line
-  std::size_t at = 0;
-  for (std::size_t k = 0; k < line; ++k) at = text.find('\n', at) + 1;
-  return at;
-}
-
-std::string line_at(const std::string& text, std::size_t line) {
-  const std::size_t at = line_start(text, line);
-  return text.substr(at, text.find('\n', at) + 1 - at);
-}
-
-std::string without_line(std::string text, std::size_t line) {
-  const std::size_t at = line_start(text, line);
-  return text.erase(at, text.find('\n', at) + 1 - at);
-}
-
 std::string cell(const std::string& csv, std::size_t row, int column) {
   std::string l = line_at(csv, row + 1);
   std::size_t at = 0;
@@ -168,27 +144,48 @@ std::string cell(const std::string& csv, std::size_t row, int column) {
   return l.substr(at, l.find_first_of(",\n", at) - at);
 }
 
-std::size_t rows_of(const std::string& csv) {
-  return static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) - 1;
+// Every row's `column` in one pass (the per-row helpers above scan from the top).
+std::vector<std::string> column_of(const std::string& csv, int column) {
+  std::vector<std::string> out;
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);  // the header
+  while (std::getline(in, line)) {
+    std::size_t at = 0;
+    for (int c = 0; c < column; ++c) at = line.find(',', at) + 1;
+    out.push_back(line.substr(at, line.find(',', at) - at));
+  }
+  return out;
+}
+
+// `csv` with every row's `column` replaced by f(row, old value), in one pass.
+std::string with_column(const std::string& csv, int column,
+                        const std::function<std::string(std::size_t, const std::string&)>& f) {
+  std::istringstream in(csv);
+  std::string line, out;
+  std::getline(in, line);
+  out = line + "\n";
+  for (std::size_t r = 0; std::getline(in, line); ++r) {
+    std::size_t at = 0;
+    for (int c = 0; c < column; ++c) at = line.find(',', at) + 1;
+    const std::size_t end = std::min(line.find(',', at), line.size());
+    out += line.substr(0, at) + f(r, line.substr(at, end - at)) + line.substr(end) + "\n";
+  }
+  return out;
 }
 
 // The first row of `extrude` (0/1) after `from` whose previous row has `previous_extrude`.
 std::size_t find_row(const std::string& csv, std::size_t from, const char* extrude,
                      const char* previous_extrude) {
-  for (std::size_t r = from; r < rows_of(csv); ++r)
-    if (cell(csv, r, 10) == extrude && cell(csv, r - 1, 10) == previous_extrude) return r;
+  const auto flags = column_of(csv, 10);
+  for (std::size_t r = from; r < flags.size(); ++r)
+    if (flags[r] == extrude && flags[r - 1] == previous_extrude) return r;
   ADD_FAILURE() << "no such row";
   return from;
 }
 
 // Findings of every kind as text, for "which reason names this row".
 std::string reasons(const PoseCheckReport& r) { return to_text(r); }
-
-bool names_row(const PoseFindings& f, std::size_t row) {
-  for (const auto& x : f.listed)
-    if (x.row == row) return true;
-  return false;
-}
 
 TEST(PoseCheckTampering, ADeletedOrDuplicatedRowIsFoundAtItsRow) {
   const std::string csv = thesis_csv();
@@ -216,9 +213,8 @@ TEST(PoseCheckTampering, RenumberedLayersAndLapsAreFound) {
   EXPECT_FALSE(one.ok());
   EXPECT_TRUE(names_row(one.numbering, mid) || names_row(one.numbering, mid + 1)) << reasons(one);
   // Layer 2 renamed layer 3 on all its rows.
-  std::string renamed = csv;
-  for (std::size_t r = 0; r < rows_of(csv); ++r)
-    if (cell(csv, r, 11) == "2") renamed = with_cell(renamed, r, 11, "3");
+  const std::string renamed =
+      with_column(csv, 11, [](std::size_t, const std::string& v) { return v == "2" ? "3" : v; });
   const auto skipped = check_pose_csv(renamed, "p.csv", cell());
   EXPECT_FALSE(skipped.ok());
   EXPECT_NE(reasons(skipped).find("layer 3 after layer 1"), std::string::npos) << reasons(skipped);
@@ -227,8 +223,9 @@ TEST(PoseCheckTampering, RenumberedLayersAndLapsAreFound) {
   EXPECT_FALSE(lap.ok());
   EXPECT_TRUE(names_row(lap.numbering, mid)) << reasons(lap);
   std::size_t boundary = 0;
-  for (std::size_t r = 1; r < rows_of(csv) && !boundary; ++r)
-    if (cell(csv, r, 12) == "1" && cell(csv, r - 1, 12) == "0") boundary = r;
+  const auto laps = column_of(csv, 12);
+  for (std::size_t r = 1; r < laps.size() && !boundary; ++r)
+    if (laps[r] == "1" && laps[r - 1] == "0") boundary = r;
   ASSERT_GT(boundary, 0u);
   const auto moved = check_pose_csv(with_cell(csv, boundary, 12, "0"), "p.csv", cell());
   EXPECT_FALSE(moved.ok());
@@ -236,9 +233,8 @@ TEST(PoseCheckTampering, RenumberedLayersAndLapsAreFound) {
   EXPECT_NE(reasons(moved).find("the turns make this row lap 1"), std::string::npos)
       << reasons(moved);
   // Lap numbers that do not start at 0.
-  std::string shifted = csv;
-  for (std::size_t r = 0; r < rows_of(csv); ++r)
-    shifted = with_cell(shifted, r, 12, std::to_string(std::stoi(cell(csv, r, 12)) + 1));
+  const std::string shifted = with_column(
+      csv, 12, [](std::size_t, const std::string& v) { return std::to_string(std::stoi(v) + 1); });
   EXPECT_TRUE(names_row(check_pose_csv(shifted, "p.csv", cell()).numbering, 0));
 }
 
@@ -296,136 +292,6 @@ TEST(PoseCheckTampering, AFileWithoutPosesIsBadInput) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no poses"), std::string::npos) << e.what();
   }
-}
-
-// --- Rotary G-code ---
-
-const std::string& rotary_gcode() {
-  static const std::string g = produced_main("scaffold-cylinder-rotary.json", "r.gcode");
-  return g;
-}
-
-const machines::MachineProfile& rotary_machine() {
-  static const auto m = machines::load_profile("marlin-rotary-a");
-  return m;
-}
-
-// 0-based line index of the n-th deposit line (G1 with E) after the marker.
-std::size_t deposit_line(const std::string& g, const std::string& after, int nth) {
-  std::size_t line = static_cast<std::size_t>(
-      std::count(g.begin(), g.begin() + static_cast<std::ptrdiff_t>(g.find(after)), '\n'));
-  for (int k = 0;; ++line) {
-    const std::string l = line_at(g, line);
-    if (l.rfind("G1 ", 0) == 0 && l.find(" E") != std::string::npos && ++k > nth) return line;
-  }
-}
-
-// Replaces the number after ` <letter>` on a line by f(number).
-std::string with_word(std::string g, std::size_t line, char letter,
-                      const std::function<double(double)>& f) {
-  const std::size_t at = line_start(g, line);
-  const std::size_t end = g.find('\n', at);
-  const std::size_t w = g.find(std::string(" ") + letter, at);
-  if (w == std::string::npos || w > end) {
-    ADD_FAILURE() << "no " << letter << " on line " << line;
-    return g;
-  }
-  const std::size_t num_end = g.find_first_of(" \n", w + 2);
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.3f", f(std::stod(g.substr(w + 2, num_end - w - 2))));
-  return g.replace(w + 2, num_end - w - 2, buf);
-}
-
-bool names_line(const PoseCheckReport& r, std::size_t line0) {  // 0-based index
-  for (const PoseFindings* f : {&r.extrusion, &r.speed, &r.numbering, &r.off_surface})
-    if (names_row(*f, line0 + 1)) return true;
-  return false;
-}
-
-TEST(RotaryCheckTampering, AnUntouchedFilePasses) {
-  const auto r = check_rotary_gcode(rotary_gcode(), "r.gcode", &rotary_machine());
-  EXPECT_TRUE(r.ok()) << to_text(r);
-  // Without --machine the header names the machine whose feeds it was planned with.
-  const auto alone = check_rotary_gcode(rotary_gcode(), "r.gcode", nullptr);
-  EXPECT_TRUE(alone.ok()) << to_text(alone);
-}
-
-TEST(RotaryCheckTampering, AnAShiftOnOneLineIsFoundThere) {
-  const std::size_t line = deposit_line(rotary_gcode(), ";LAYER:1", 40);
-  const std::string g = with_word(rotary_gcode(), line, 'A', [](double a) { return a + 20; });
-  const auto r = check_rotary_gcode(g, "r.gcode", &rotary_machine());
-  EXPECT_FALSE(r.ok());
-  EXPECT_TRUE(names_line(r, line)) << to_text(r);
-}
-
-TEST(RotaryCheckTampering, EveryAShiftedAlikeMovesThePatchOffItsCentre) {
-  std::string g;
-  std::istringstream in(rotary_gcode());
-  for (std::string l; std::getline(in, l);) {
-    const std::size_t a = l.find(" A");
-    if ((l.rfind("G0 ", 0) == 0 || l.rfind("G1 ", 0) == 0) && a != std::string::npos) {
-      const std::size_t end = l.find(' ', a + 2);
-      char buf[40];
-      std::snprintf(buf, sizeof buf, "%.3f", std::stod(l.substr(a + 2, end - a - 2)) + 20);
-      l.replace(a + 2, end == std::string::npos ? std::string::npos : end - a - 2, buf);
-    }
-    g += l + "\n";
-  }
-  const auto r = check_rotary_gcode(g, "r.gcode", &rotary_machine());
-  EXPECT_FALSE(r.ok());
-  EXPECT_NE(to_text(r).find("20.000 deg of A"), std::string::npos) << to_text(r);
-}
-
-TEST(RotaryCheckTampering, FeedsTimesFiveAreFound) {
-  const std::string& g0 = rotary_gcode();
-  const std::size_t line = deposit_line(g0, ";LAYER:2", 10);
-  const auto one = check_rotary_gcode(with_word(g0, line, 'F', [](double f) { return 5 * f; }),
-                                      "r.gcode", &rotary_machine());
-  EXPECT_TRUE(names_row(one.speed, line + 1)) << to_text(one);
-  // Every feed of the file times five: the planned speeds (the job's and the machine's) differ.
-  std::string all;
-  std::istringstream in(g0);
-  for (std::string l; std::getline(in, l);) {
-    const std::size_t f = l.find(" F");
-    if ((l.rfind("G1 ", 0) == 0 || l.rfind("G0 ", 0) == 0) && f != std::string::npos) {
-      const std::size_t end = l.find(' ', f + 2);
-      const double v = std::stod(l.substr(f + 2, end - f - 2));
-      char buf[40];
-      std::snprintf(buf, sizeof buf, "%.3f", 5 * v);
-      l.replace(f + 2, end == std::string::npos ? std::string::npos : end - f - 2, buf);
-    }
-    all += l + "\n";
-  }
-  const auto every = check_rotary_gcode(all, "r.gcode", &rotary_machine());
-  EXPECT_FALSE(every.ok());
-  EXPECT_GE(every.speed.total, 1u);
-  EXPECT_NE(to_text(every).find("planned"), std::string::npos) << to_text(every);
-  EXPECT_FALSE(check_rotary_gcode(all, "r.gcode", nullptr).ok()) << "machine from the header";
-}
-
-TEST(RotaryCheckTampering, ADeletedOrSwappedLineIsFoundThere) {
-  const std::string& g = rotary_gcode();
-  const std::size_t line = deposit_line(g, ";LAYER:0", 60);
-  const auto deleted = check_rotary_gcode(without_line(g, line), "r.gcode", &rotary_machine());
-  EXPECT_FALSE(deleted.ok());
-  EXPECT_TRUE(names_line(deleted, line)) << to_text(deleted);  // the next line moved up
-  std::string swapped = g;
-  const std::string a = line_at(g, line), b = line_at(g, line + 1);
-  swapped.replace(line_start(g, line), a.size() + b.size(), b + a);
-  const auto s = check_rotary_gcode(swapped, "r.gcode", &rotary_machine());
-  EXPECT_FALSE(s.ok());
-  EXPECT_TRUE(names_line(s, line) || names_line(s, line + 1)) << to_text(s);
-}
-
-TEST(RotaryCheckTampering, RenumberedLayersAndEmptyFilesAreFound) {
-  const std::string& g = rotary_gcode();
-  std::string renumbered = g;
-  renumbered.replace(renumbered.find(";LAYER:2"), 8, ";LAYER:5");
-  const auto r = check_rotary_gcode(renumbered, "r.gcode", &rotary_machine());
-  EXPECT_FALSE(r.ok());
-  EXPECT_NE(to_text(r).find(";LAYER:5 is the file's layer 2"), std::string::npos) << to_text(r);
-  const std::string header = g.substr(0, g.find("G21"));
-  EXPECT_THROW(check_rotary_gcode(header, "r.gcode", &rotary_machine()), InputError);
 }
 
 }  // namespace

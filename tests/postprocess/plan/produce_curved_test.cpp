@@ -234,9 +234,11 @@ TEST(ProduceCurved, EveryEMoveIsWithinTheFirmwaresLimitAndLapsWaitForTheRobot) {
     if (line.rfind("G1 E", 0) == 0) {
       EXPECT_LE(std::stod(line.substr(4)), 200.0) << line;
     }
-    if (line.rfind("M226 P3 S", 0) == 0) ++waits;
+    if (line.rfind("M226 P3 S", 0) == 0 && line.find("reset") == std::string::npos) ++waits;
   }
   EXPECT_EQ(waits, 6);
+  EXPECT_NE(g.find("M226 P3 S0 ; reset: wait for the robot's reset"), std::string::npos)
+      << "issue 29: the robot's reset before lap 0";
   EXPECT_NE(g.find("M83"), std::string::npos);
   EXPECT_NE(g.find("M302 S0"), std::string::npos);
   EXPECT_NE(g.find("G1 X0.000 Y-90.000 Z244.000"), std::string::npos)
@@ -307,7 +309,8 @@ TEST(ProduceCurved, LongLapsAreSplitIntoSubPrograms) {
 TEST(ProduceCurved, SunriseReadsTheCsvAndMovesAtVcart) {
   const std::string java = file(thesis(), "Part.java");
   for (const char* want :
-       {"extends RoboticsAPIApplication", "CSV_NAME = \"part.csv\"", "setCartVelocity(r[SPEED])",
+       {"extends RoboticsAPIApplication", "CSV_NAME = \"part.csv\"", "setCartVelocity(speed)",
+        "frameSpeed(rows.get(i - 1), r)",
         "lin(target(r, 0.0))", "V_CART_MM_S = 6.000", "extruder.setLapStart(",
         "extruder.getExtruderReady()", "RETRACT_MM = 20.000",
         "CONTACT_RADIUS_MM = {20.9600, 21.9200, 22.8800}"}) {

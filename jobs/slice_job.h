@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,12 +13,13 @@
 #include "slicer/progress.h"
 #include "slicer/tolerances.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // Work is bounded before any slicing: layers, and pattern segments clipped over all layers
 // (about 10 s of clipping at most).
 inline constexpr int kMaxSliceLayers = 20000;
 inline constexpr double kMaxSliceSegments = 1e8;
+inline constexpr int kMaxSliceThreads = 256;
 
 struct SliceSettings {
   std::string part;                  // mesh file to fill (or empty with `onto`)
@@ -42,6 +44,9 @@ struct SliceSettings {
   std::string machine = "deltawasp-2040-clay";
   std::string output = "slice.gcode";  // recorded in the report (the CLI: PART's name.gcode)
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
+  // Threads that cut, fill and plan the layers, in [1, 256]; unset: every core. The bytes
+  // written are the same for any number (jobs/slice_parallel.h).
+  std::optional<int> threads;
 };
 
 struct SliceResult {
@@ -63,7 +68,13 @@ double scale_to_fit(const slicer::Vec3& size_mm, const std::string& box);
 // over the substrate mesh for a 3-axis machine (postprocess/plan/drape.h).
 SliceResult produce_slice(const SliceSettings& settings);
 
+// Throws InputError naming slice.threads unless unset or in [1, kMaxSliceThreads].
+void check_threads(const std::optional<int>& threads);
+// "4" -> 4 for --threads; throws InputError naming slice.threads for anything but a whole
+// number in [1, kMaxSliceThreads].
+int threads_from_text(const std::string& text);
+
 // "1,2,3" -> (1, 2, 3) degrees; throws InputError naming slice.rotate.
 slicer::Vec3 rotation_from_text(const std::string& text);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

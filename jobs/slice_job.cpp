@@ -1,16 +1,24 @@
 // The slice pipeline: read, check, place, slice, fill, produce.
-#include "cli/slice_job.h"
+#include "jobs/slice_job.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
 
+#include <tbb/task_arena.h>
+
 #include "jobs/job_runner.h"
+#include "jobs/slice_layer_stats.h"
+#include "jobs/slice_material_bead.h"
+#include "jobs/slice_parallel.h"
+#include "jobs/slice_thin_walls.h"
 #include "machines/profile.h"
 #include "patterns/region_fill.h"
 #include "patterns/registry.h"
+#include "patterns/thin_feature.h"
 #include "postprocess/plan/drape.h"
 #include "slicer/input_error.h"
 #include "slicer/mesh_io.h"
@@ -19,7 +27,7 @@
 #include "slicer/params.h"
 #include "slicer/unit_values.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -37,6 +45,7 @@ void check_settings(const SliceSettings& s) {
     throw InputError("arc-tolerance = " + slicer::short_number(s.arc_tolerance_mm) +
                      ": must be in (0, 1] (mm)");
   }
+  check_threads(s.threads);
 }
 
 slicer::MeshPlacement placement_of(const SliceSettings& s) {
@@ -180,52 +189,20 @@ void check_printable(const std::vector<slicer::Region>& layers, const slicer::Ve
                    "(--scale, --scale-to-fit) or use a finer nozzle");
 }
 
-// Strips of a layer no bead reaches (more than 4 nozzle^2, with the layers below and above
-// covering them too: a wall, not a curved part's rim) are taken out of the layer, and said.
-std::vector<std::string> skip_thin_walls(std::vector<slicer::Region>& layers,
-                                         const patterns::RegionPattern& p,
-                                         nlohmann::json& skipped) {
-  const double d = p.nozzle_mm, r = d / 2.0, h = p.layer_height_mm;
-  std::vector<slicer::Region> lost(layers.size());
-  for (std::size_t k = 0; k < layers.size(); ++k) {
-    const slicer::Region reached = slicer::offset_region(slicer::offset_region(layers[k], -r), r);
-    for (const auto& piece : slicer::region_difference(layers[k], reached)) {
-      const double area = slicer::area_mm2(piece);
-      if (area <= 4.0 * d * d) continue;
-      bool wall = true;
-      for (const std::size_t j : {k - 1, k + 1}) {  // k - 1 wraps for k = 0: not a layer
-        wall = wall && j < layers.size() &&
-               slicer::area_mm2(slicer::region_intersection({piece}, layers[j])) > area / 2;
-      }
-      if (wall) lost[k].push_back(piece);
-    }
-  }
-  std::vector<std::string> notes;
-  for (std::size_t k = 0; k < layers.size();) {
-    if (lost[k].empty()) {
-      ++k;
-      continue;
-    }
-    std::size_t end = k;
-    double area = 0.0;
-    slicer::Region first = lost[k];
-    for (; end < layers.size() && !lost[end].empty(); ++end) {
-      area += slicer::area_mm2(lost[end]);
-      layers[end] = slicer::region_difference(layers[end], lost[end]);
-    }
-    const auto [lo, hi] = slicer::region_bounds(first);
-    const slicer::Vec2 c = (lo + hi) / 2.0;
-    const double z0 = static_cast<double>(k) * h, z1 = static_cast<double>(end) * h;
-    notes.push_back("skipped " + mm_text(area) + " mm2 too thin for the " +
-                    slicer::short_number(d) + " mm nozzle near (" + mm_text(c.x()) + ", " +
-                    mm_text(c.y()) + "), z " + mm_text(z0) + " to " + mm_text(z1) + " mm");
-    skipped.push_back(
-        {{"area_mm2", std::round(area * 1000.0) / 1000.0},
-         {"near_mm", {std::round(c.x() * 1000.0) / 1000.0, std::round(c.y() * 1000.0) / 1000.0}},
-         {"z_mm", {std::round(z0 * 1000.0) / 1000.0, std::round(z1 * 1000.0) / 1000.0}}});
-    k = end;
-  }
-  return notes;
+// A slice that deposits nothing is refused (exit 2, no file): the pattern left no piece long
+// enough in any layer (pieces shorter than a nozzle, or four for a lattice, are left out) and
+// no perimeter was asked for.
+void check_not_empty(const post::Produced& produced, const SliceSettings& s,
+                     const slicer::Vec3& size, const patterns::RegionPattern& p) {
+  const nlohmann::json& totals = produced.report.at("totals");
+  if (totals.value("deposit_length_mm", 0.0) > 0.0) return;
+  throw InputError("slice: every layer is empty: no " + s.pattern +
+                   " strand fits in any of the " +
+                   std::to_string(totals.value("layers", 0)) +
+                   " layers of the part (" + size_text(size) + ") with the " +
+                   slicer::short_number(p.nozzle_mm) +
+                   " mm nozzle; scale it up (--scale, --scale-to-fit) or use a finer pattern or "
+                   "nozzle" + (s.perimeters == 0 ? ", or add --perimeters" : ""));
 }
 
 std::vector<std::string> contour_notes(const slicer::ContourStats& c) {
@@ -272,8 +249,11 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   patterns::PartFill fill;
   slicer::ContourStats contours;
   slicer::progress_phase(s.progress, "slicing");
-  fill.layers = slicer::slice_layers(r.part.mesh, pattern.layer_height_mm, layers, &contours);
-  check_printable(fill.layers, size, pattern);
+  fill.layers = cut_layers(r.part.mesh, pattern.layer_height_mm, layers, &contours);
+  // Thin features first: their centre-line beads print what no bead of the fill reaches.
+  patterns::PartThinBeads thin =
+      thin_features_in_parallel(fill.layers, pattern.nozzle_mm, pattern.layer_height_mm);
+  if (thin.count == 0) check_printable(fill.layers, size, pattern);
   r.notes = r.part.defects;
   for (const auto& n : contour_notes(contours)) r.notes.push_back(n);
   nlohmann::json skipped = nlohmann::json::array();
@@ -281,9 +261,10 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   fill.half_extent_mm = half;
   fill.volume_mm3 = slicer::signed_volume_mm3(r.part.mesh);
   fill.perimeters = s.perimeters;
+  fill.extra_strokes = std::move(thin.per_layer);
   // Each layer is filled, planned and written before the next (postprocess/plan/produce.h);
   // the file is kept in memory: the slice previews and checks read the finished text.
-  const std::unique_ptr<slicer::LayerSource> filled = patterns::part_fill_layers(std::move(fill), pattern);
+  const std::unique_ptr<patterns::PartFillSource> filled = patterns::part_fill_layers(std::move(fill), pattern);
   slicer::Toolpath& record = filled->record;
   record.parameters = slice_parameters(s, pattern);
   record.derived["size_mm"] = {size.x(), size.y(), size.z()};
@@ -292,13 +273,32 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   record.derived["mesh_repairs"] = r.part.changes;
   record.derived["mesh_notes"] = r.notes;
   record.derived["skipped_regions"] = skipped;
+  record.derived["thin_beads"] = {{"count", thin.count},
+                                  {"length_mm", std::round(thin.length_mm * 1000.0) / 1000.0}};
   post::ProduceOptions po;
   po.gcode_path = s.output;
   po.viewer_e = s.viewer_e;
   po.progress = s.progress;
   po.phase = "filling layers, planning and writing G-code";
   po.keep_program = s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm;  // vet_produced reads it
-  r.produced = post::produce_layers(*filled, machine, post::plan_options_from(record, s.arc_tolerance_mm), po);
+  // Filled a few layers ahead on every thread, planned and written in layer order.
+  const post::PlanOptions options = post::plan_options_from(record, s.arc_tolerance_mm);
+  post::LayerProducer producer(record, filled->layer_count(), machine, options, po);
+  SliceLayerStats stats(pattern.nozzle_mm);
+  // A layer with material its fill leaves empty (a rounded top narrower than a bead) gets
+  // a centre bead: every layer with material deposits.
+  const auto complete = [&](std::size_t k, patterns::LayerFill& f) {
+    if (f.strokes.empty() && has_material(filled->region(k), pattern.nozzle_mm)) {
+      f.strokes = material_beads(filled->region(k), pattern.nozzle_mm, pattern.layer_height_mm);
+    }
+  };
+  produce_filled(
+      *filled, producer,
+      [&](std::size_t k, const slicer::Layer& layer) { stats.add(k, filled->region(k), layer); },
+      complete);
+  stats.write(record.derived);
+  r.produced = producer.finish();
+  check_not_empty(r.produced, s, size, pattern);
   r.toolpath = std::move(record);  // the layers went as they were written
   return r;
 }
@@ -327,6 +327,24 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
 }
 
 }  // namespace
+
+void check_threads(const std::optional<int>& threads) {
+  if (threads && (*threads < 1 || *threads > kMaxSliceThreads)) {
+    throw InputError("slice.threads = " + std::to_string(*threads) + ": must be in [1, " +
+                     std::to_string(kMaxSliceThreads) + "]");
+  }
+}
+
+int threads_from_text(const std::string& text) {
+  int n = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+  if (ec != std::errc() || end != text.data() + text.size()) {
+    throw InputError("slice.threads = " + text + ": must be a whole number in [1, " +
+                     std::to_string(kMaxSliceThreads) + "]");
+  }
+  check_threads(n);
+  return n;
+}
 
 double scale_to_fit(const slicer::Vec3& size_mm, const std::string& box) {
   // "30x30x30", "3 x 3 x 3 cm", "30mm x 30mm x 1in" (slicer/unit_values.h).
@@ -375,10 +393,17 @@ SliceResult produce_slice(const SliceSettings& s) {
                      (machine.robot.enabled ? "robot-holds-substrate" : "rotary") +
                      "): slice and --onto need a 3-axis printer (a delta or Cartesian profile)");
   }
-  SliceResult out = s.onto.empty() ? slice_part(s, *g, machine) : produce_onto(s, *g, machine);
+  // The job's threads: its parallel loops run in this arena (a sweep's own parallel loop
+  // around it shares the cores).
+  // (automatic is a static const without a definition in the library: read its value, never
+  // bind a reference to it, or clang's -O1 sanitizer build fails to link.)
+  const int arena_threads = s.threads ? *s.threads : int{tbb::task_arena::automatic};
+  tbb::task_arena arena(arena_threads);
+  SliceResult out = arena.execute(
+      [&] { return s.onto.empty() ? slice_part(s, *g, machine) : produce_onto(s, *g, machine); });
   slicer::progress_phase(s.progress, "checking");
-  vet_produced(out.produced, machine, s.arc_tolerance_mm);
+  cli::vet_produced(out.produced, machine, s.arc_tolerance_mm);
   return out;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

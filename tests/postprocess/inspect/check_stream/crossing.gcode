@@ -1,0 +1,48 @@
+; A DIW file with self-crossings: before the first layer, in layer 0 (an arc over a line),
+; a touch in layer 1, a layer that only travels, then one more layer with a crossing.
+G21
+G90
+M83
+G0 X0 Y0 Z0.2
+G1 X10 Y10 E1 F600
+G0 X0 Y10
+G1 X10 Y0 E1
+;LAYER_CHANGE
+;Z:0.4
+;HEIGHT:0.2
+;LAYER:0
+G0 X0 Y5 Z0.4
+G1 X20 Y5 E1 F600
+G0 X5 Y0
+G2 X15 Y0 I5 J0 E1
+G0 X30 Y0
+G1 X30 Y10 E0.5
+G1 X30 Y20 E0.5
+G0 X40 Y0
+G1 X40 Y10 E1
+;LAYER_CHANGE
+;Z:0.6
+;LAYER:1
+G0 X0 Y0 Z0.6
+G1 X10 Y0 E1
+G1 X10 Y10 E1
+G0 X5 Y10
+G1 X5 Y0 E1
+G4 P200
+;LAYER_CHANGE
+;Z:0.8
+;LAYER:2
+G0 X50 Y50 Z0.8
+G0 X60 Y60
+;LAYER_CHANGE
+;Z:1.0
+;LAYER:3
+G0 X0 Y0 Z1.0
+G3 X10 Y0 I5 J0 E1
+G1 X10 Y-10 E1
+G1 X5 Y5 E1
+G1 X0 Y-10 E1
+;LAYER_CHANGE
+;Z:1.2
+;LAYER:4
+G0 X0 Y0 Z1.2
