@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <set>
@@ -10,31 +11,42 @@
 #include <vector>
 
 #include "slicer/input_error.h"
+#include "slicer/mesh_header_ply.h"
+#include "slicer/mesh_io.h"
 
 namespace strand::slicer {
 
 namespace {
-
-const std::set<std::string> kPlyTypes = {"char",  "uchar",  "short",   "ushort", "int",   "uint",
-                                         "float", "double", "int8",    "uint8",  "int16", "uint16",
-                                         "int32", "uint32", "float32", "float64"};
 
 struct PlyHeaderReader {
   std::string path;
   std::uintmax_t size_bytes = 0;
   int line_no = 0;
   bool format = false;
-  int elements = 0;  // a property belongs to the element line above it
   std::set<std::string> names;
+  PlyLayout layout;  // a property belongs to the element line above it
 
   [[noreturn]] void fail(const std::string& why) const {
     throw InputError("mesh = " + path + ": PLY header line " + std::to_string(line_no) + ": " +
                      why);
   }
 
-  void type(std::istringstream& w) const {
+  // The next word as a PLY type: its bytes.
+  int type(std::istringstream& w) const {
     std::string t;
-    if (!(w >> t) || !kPlyTypes.count(t)) fail("a property type must be one of char .. float64");
+    const int bytes = (w >> t) ? ply_type_bytes(t) : 0;
+    if (bytes == 0) fail("a property type must be one of char .. float64");
+    return bytes;
+  }
+
+  // A list's count type: an integer type (OpenMesh reads a float count as a size).
+  void count_type(std::istringstream& w, PlyProperty& p) const {
+    std::string t;
+    w >> t;
+    p.count_bytes = ply_type_bytes(t);
+    if (p.count_bytes == 0 || t.find("float") != std::string::npos || t == "double")
+      fail("a list count type must be an integer type (uchar, ushort, uint, ...)");
+    p.count_signed = t[0] != 'u';
   }
 
   void line(const std::string& text) {
@@ -56,6 +68,9 @@ struct PlyHeaderReader {
         fail("format must be ascii, binary_little_endian or binary_big_endian");
       if (version != "1.0") fail("the format version must be 1.0");
       format = true;
+      layout.format = kind == "ascii"                  ? PlyFormat::Ascii
+                      : kind == "binary_little_endian" ? PlyFormat::BinaryLittleEndian
+                                                       : PlyFormat::BinaryBigEndian;
     } else if (key == "element") {
       // The count as digits only: OpenMesh misreads ".4" or "1e9" and allocates gigabytes.
       std::string name, count_text;
@@ -64,21 +79,25 @@ struct PlyHeaderReader {
                           count_text.find_first_not_of("0123456789") == std::string::npos;
       if (!digits || std::stod(count_text) > static_cast<double>(size_bytes))
         fail("an element count must be 0 .. " + std::to_string(size_bytes) + " (the file's bytes)");
-      ++elements;
+      layout.elements.push_back({name, std::stoull(count_text), {}});
       names.insert(name);
     } else if (key == "property") {
       // OpenMesh adds it to the last element, and crashes when there is none (mesh_fuzz).
-      if (elements == 0) fail("a property before any element line");
+      if (layout.elements.empty()) fail("a property before any element line");
       std::string first;
       w >> first;
+      PlyProperty p;
       if (first == "list") {
-        type(w);
-        type(w);
-      } else if (!kPlyTypes.count(first)) {
-        fail("a property type must be one of char .. float64");
+        p.list = true;
+        count_type(w, p);
+        p.bytes = type(w);
+      } else {
+        p.bytes = ply_type_bytes(first);
+        if (p.bytes == 0) fail("a property type must be one of char .. float64");
       }
       std::string name;
       if (!(w >> name)) fail("a property needs a name");
+      layout.elements.back().properties.push_back(p);
     } else if (!key.empty() && key != "comment" && key != "obj_info") {
       fail("'" + key.substr(0, 20) + "' is not a PLY header keyword");
     }
@@ -117,7 +136,20 @@ void vet_ply_header(const std::string& path, std::uintmax_t size_bytes) {
   if (!r.format) r.fail("no format line before end_header");
   if (!r.names.count("vertex") || !r.names.count("face"))
     r.fail("a triangle mesh needs 'element vertex' and 'element face' lines");
+  r.layout.body_offset = end + 12 + (head.compare(end + 11, 1, "\n") == 0 ? 0 : 1);
+  vet_ply_body(path, size_bytes, r.layout);
 }
+
+namespace {
+
+// A count as the message shows it: 2147483647, not 2.14748e+09.
+std::string token_text(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
 
 void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
   std::ifstream in(path, std::ios::binary);
@@ -127,24 +159,50 @@ void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
   std::string token;
   std::vector<double> counts;
   bool keyword = false;
-  long long index = 0;
+  long long index = 0, line_no = 0, keyword_line = 0;
+  std::uint64_t vertex_lines = 0, triangles = 0;
   for (std::string line; std::getline(in, line);) {
+    ++line_no;
     std::istringstream words(line.substr(0, line.find('#')));
+    const bool body = counts.size() == 3;  // vertex lines, then face lines
+    int on_line = 0;
+    double corners = 0.0;
     while (words >> token) {
       ++index;
+      ++on_line;
       if (!keyword) {  // OFF with its optional prefixes (C, N, ST, 4, n)
         const auto at = token.find("OFF");
         if (at == std::string::npos || token.size() != at + 3) fail("files start with OFF");
         keyword = true;
+        keyword_line = line_no;
         continue;
       }
       if (token == "BINARY") fail("binary files are not read (save as ASCII OFF)");
+      // OpenMesh skips the rest of the OFF line and reads the counts after it: counts written
+      // there would leave its own uninitialised (a 2 GB reservation for "OFF 3 0 1").
+      if (line_no == keyword_line) {
+        fail("line 1 holds only OFF: the vertex, face and edge counts go on the next line");
+      }
       char* end = nullptr;
       const double v = std::strtod(token.c_str(), &end);
       if (end != token.c_str() + token.size() || !std::isfinite(v)) {
         fail("token " + std::to_string(index) + " is not a number");
       }
-      if (counts.size() < 3) counts.push_back(v);
+      if (counts.size() < 3 && !body) counts.push_back(v);
+      if (on_line == 1) corners = v;
+    }
+    if (!body || on_line == 0 || static_cast<double>(vertex_lines++) < counts[0]) continue;
+    // A face line: "n i1 .. in [colour]". OpenMesh sizes the face from n before reading it.
+    const std::string where = "line " + std::to_string(line_no) + ": ";
+    if (corners < 0 || corners != std::floor(corners) || corners + 1 > on_line) {
+      fail(where + "a face of " + token_text(corners) + " corners lists " +
+           std::to_string(on_line - 1) + " vertex numbers");
+    }
+    triangles += corners >= 3 ? static_cast<std::uint64_t>(corners) - 2 : 0;
+    if (triangles > kMaxMeshTriangles) {
+      fail(where + "the faces make more than " + std::to_string(kMaxMeshTriangles) +
+           " triangles (n - 2 for a face of n corners); at most " +
+           std::to_string(kMaxMeshTriangles) + " are accepted");
     }
   }
   if (counts.size() < 3) fail("files give vertex, face and edge counts after OFF");
@@ -154,6 +212,10 @@ void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
       fail(std::string(k == 0 ? "vertex" : "face") + " count must be a whole number 0 .. " +
            std::to_string(size_bytes) + " (the file's bytes)");
     }
+  }
+  if (counts[0] > static_cast<double>(kMaxMeshVertices)) {
+    fail("vertex count " + token_text(counts[0]) + ": at most " +
+         std::to_string(kMaxMeshVertices) + " vertices are accepted");
   }
 }
 
@@ -252,6 +314,7 @@ void vet_finite_vertices(const std::string& path, const std::string& ext,
 void vet_obj_faces(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   long long line_no = 0;
+  std::uint64_t triangles = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_no;
     std::istringstream words(line.substr(0, line.find('#')));
@@ -274,6 +337,14 @@ void vet_obj_faces(const std::string& path) {
     if (corners < 3) {
       throw InputError("mesh = " + path + ": OBJ line " + std::to_string(line_no) +
                        ": a face needs at least 3 corners");
+    }
+    // OpenMesh makes n - 2 triangles of a face of n corners before any check of ours.
+    triangles += static_cast<std::uint64_t>(corners) - 2;
+    if (triangles > kMaxMeshTriangles) {
+      throw InputError("mesh = " + path + ": OBJ line " + std::to_string(line_no) +
+                       ": the faces make more than " + std::to_string(kMaxMeshTriangles) +
+                       " triangles (n - 2 for a face of n corners); at most " +
+                       std::to_string(kMaxMeshTriangles) + " are accepted");
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -293,7 +294,7 @@ TEST(MeshIo, GltfBuffersNamedByUriCountAgainstTheInputLimit) {
 // (found by mesh_fuzz): such files are refused first.
 TEST(MeshIo, OffFilesWithTokensThatAreNotNumbersAreRefused) {
   const auto dir = testing::fresh_dir("mesh-off");
-  write_file_atomic(dir + "/garbled.off", "OFF 400=aM--M--M je 43\n0 0 0\n");
+  write_file_atomic(dir + "/garbled.off", "OFF\n400=aM--M--M je 43\n0 0 0\n");
   write_file_atomic(dir + "/huge.off", "OFF\n# a comment may hold anything: x\n9e9 1 0\n0 0 0\n");
   write_file_atomic(dir + "/binary.off", "OFF BINARY\n");
   EXPECT_NE(error_of(dir + "/garbled.off").find("OFF token 2 is not a number"), std::string::npos)
@@ -302,6 +303,107 @@ TEST(MeshIo, OffFilesWithTokensThatAreNotNumbersAreRefused) {
             std::string::npos)
       << error_of(dir + "/huge.off");
   EXPECT_NE(error_of(dir + "/binary.off").find("binary files are not read"), std::string::npos);
+  // OpenMesh reads the counts after the OFF line whatever that line holds: on it they left its
+  // counts uninitialised (mesh_fuzz, CI: a 2 GB reservation for "OFF 3 0 1").
+  write_file_atomic(dir + "/inline.off", "OFF 3 0 1");
+  write_file_atomic(dir + "/inline-body.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  for (const char* name : {"/inline.off", "/inline-body.off"}) {
+    EXPECT_NE(error_of(dir + name).find("OFF line 1 holds only OFF: the vertex, face and edge "
+                                        "counts go on the next line"),
+              std::string::npos)
+        << error_of(dir + name);
+  }
+}
+
+// Every count of a mesh file is bounded by the bytes that follow it and by the documented
+// limits before a reader allocates for it (issue 29: a 331-byte binary PLY whose one face
+// list claims 2^31 - 1 indices took 8.4 GB and 60 s). The reproducer is
+// tests/data/ply-list-count-2e31.ply; the others are written here.
+TEST(MeshIo, ListAndFaceCountsAreBoundedBeforeAnyAllocation) {
+  const auto dir = testing::fresh_dir("mesh-counts");
+  const std::string hostile =
+      std::string(STRAND_SOURCE_DIR) + "/tests/data/ply-list-count-2e31.ply";
+  const auto start = std::chrono::steady_clock::now();
+  const std::string binary = error_of(hostile);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  EXPECT_NE(binary.find("PLY face 0: a list of 2147483647 entries needs 8589934588 bytes; 12 are "
+                        "left in the file"),
+            std::string::npos)
+      << binary;
+  const std::string tri = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                          "property float y\nproperty float z\nelement face 1\n"
+                          "property list uint int vertex_indices\nend_header\n"
+                          "0 0 0\n1 0 0\n0 1 0\n";
+  write_file_atomic(dir + "/ascii.ply", tri + "2147483647 0 1 2\n");
+  EXPECT_NE(error_of(dir + "/ascii.ply").find("PLY face 0: a list of 2147483647 entries; only"),
+            std::string::npos)
+      << error_of(dir + "/ascii.ply");
+  // A face's flags byte after its list is missing: the file ends inside the record.
+  std::string cut = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                    "property float y\nproperty float z\nelement face 1\n"
+                    "property list uchar int vertex_indices\nproperty uchar flags\nend_header\n";
+  cut += std::string(36, '\0') + "\x03" + std::string(12, '\0');
+  write_file_atomic(dir + "/short.ply", cut);
+  EXPECT_NE(error_of(dir + "/short.ply").find("PLY face 0: the file ends before this record does"),
+            std::string::npos)
+      << error_of(dir + "/short.ply");
+  write_file_atomic(dir + "/float-count.ply",
+                    "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nelement face 1\n"
+                    "property list float int vertex_indices\nend_header\n0\n0\n0\n3 0 1 2\n");
+  EXPECT_NE(error_of(dir + "/float-count.ply").find("a list count type must be an integer type"),
+            std::string::npos);
+  // Records at their smallest (12 bytes a binary vertex) must fit after the header.
+  write_file_atomic(dir + "/records.ply",
+                    "ply\nformat binary_little_endian 1.0\nelement vertex 20\nproperty float x\n"
+                    "property float y\nproperty float z\nelement face 0\n"
+                    "property list uchar int vertex_indices\nend_header\n" +
+                        std::string(200, '\0'));
+  EXPECT_NE(error_of(dir + "/records.ply")
+                .find("PLY element vertex 20: records of at least 12 bytes each; the file has "
+                      "200 bytes after its header"),
+            std::string::npos)
+      << error_of(dir + "/records.ply");
+  const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n";
+  write_file_atomic(dir + "/face.off", off + "2147483647 0 1 2\n");
+  write_file_atomic(dir + "/negative.off", off + "-5 0 1 2\n");
+  EXPECT_NE(error_of(dir + "/face.off").find("OFF line 6: a face of 2147483647 corners lists 3 "
+                                             "vertex numbers"),
+            std::string::npos)
+      << error_of(dir + "/face.off");
+  EXPECT_NE(error_of(dir + "/negative.off").find("OFF line 6: a face of -5 corners"),
+            std::string::npos)
+      << error_of(dir + "/negative.off");
+  write_file_atomic(dir + "/ok.off", off + "3 0 1 2 255 0 0\n");  // a colour after the face
+  EXPECT_EQ(read_mesh_file(dir + "/ok.off").triangles.size(), 1u);
+  // One OBJ face of n corners becomes n - 2 triangles: more than the limit is refused.
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
+  obj.reserve(obj.size() + 2 * (kMaxMeshTriangles + 3));
+  for (std::size_t k = 0; k < kMaxMeshTriangles + 3; ++k) obj += " 1";
+  write_file_atomic(dir + "/fan.obj", obj + "\n");
+  EXPECT_NE(error_of(dir + "/fan.obj").find("OBJ line 4: the faces make more than 4000000 "
+                                            "triangles"),
+            std::string::npos)
+      << error_of(dir + "/fan.obj");
+  for (const char* f : {"ascii.ply", "short.ply", "records.ply", "face.off", "negative.off",
+                        "fan.obj"}) {
+    EXPECT_EQ(error_of(dir + "/" + f).find('\n'), std::string::npos) << f;
+  }
+}
+
+// The same through the CLI under a 300 MB address-space limit (the old reader asked for
+// 8 GB): exit 2, one line naming the list, in well under a second.
+TEST(MeshIo, HostilePlyExitsTwoInOneLineWithinLimits) {
+#ifdef STRAND_SANITIZE_BUILD
+  GTEST_SKIP() << "AddressSanitizer reserves more address space than the limit";
+#endif
+  const auto dir = testing::fresh_dir("mesh-counts-cli");
+  const std::string hostile =
+      std::string(STRAND_SOURCE_DIR) + "/tests/data/ply-list-count-2e31.ply";
+  const auto start = std::chrono::steady_clock::now();
+  const auto r = testing::run_in_shell(
+      "ulimit -v 300000; '" + std::string(STRAND_CLI) + "' mesh '" + hostile + "'", dir);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+  testing::expect_input_error(r, "a list of 2147483647 entries needs 8589934588 bytes");
 }
 
 }  // namespace
