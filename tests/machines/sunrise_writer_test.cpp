@@ -1,7 +1,7 @@
 // The Sunrise application as a controller would run it: written by `strand`, compiled with
 // javac against stand-in RoboticsAPI classes (tests/data/sunrise_stubs) and run; every motion
-// it commands is compared with the pose CSV it reads (issue 20: the 180 deg flip at turn 0),
-// and hostile names and profile strings must stay text (issue 24: code injection).
+// it commands is compared with the pose CSV it reads (issue 20: the 180 deg flip at turn 0).
+// Hostile names and profile strings: sunrise_hostile_test.cpp.
 #include "machines/sunrise_writer.h"
 
 #include <gtest/gtest.h>
@@ -24,71 +24,16 @@
 #include "machines/workpiece_pose.h"
 #include "slicer/input_error.h"
 #include "slicer/units.h"
+#include "tests/machines/sunrise_harness.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/mesh_shapes.h"
 
 namespace strand::machines {
 namespace {
 
-namespace fs = std::filesystem;
 using slicer::Vec3;
 
-const std::string kStubs = std::string(STRAND_SOURCE_DIR) + "/tests/data/sunrise_stubs";
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
-
-struct Shell {
-  int exit_code;
-  std::string out;
-};
-
-Shell shell(const std::string& command) {
-  const std::string log = testing::fresh_dir("sh") + "/out";
-  const int rc = std::system((command + " > " + quoted(log) + " 2>&1").c_str());
-  return {WEXITSTATUS(rc), testing::slurp(log)};
-}
-
-// A copy of the shipped KUKA profile with some values changed, written into `dir`.
-std::string profile_with(const std::string& dir, const nlohmann::json& sunrise,
-                         const std::string& name = "kuka-test-cell") {
-  nlohmann::json j;
-  for (const auto& b : builtin_profiles())
-    if (std::string(b.name) == "kuka-iiwa14-wasp-cylinder") j = nlohmann::json::parse(b.json);
-  j["name"] = name;
-  for (const auto& [k, v] : sunrise.items()) j["robot"]["sunrise"][k] = v;
-  const std::string path = dir + "/cell.json";
-  std::ofstream(path) << j.dump(2);
-  return path;
-}
-
-// Compiles `java_file` (class `cls`) with the stubs and an I/O group stand-in; "" on success,
-// javac's messages otherwise.
-// The I/O group stand-in logs the lap signal and answers the ready input with alternating
-// levels (a real extruder answers once it is parked), logging each read.
-std::string compile(const std::string& dir, const std::string& java_file,
-                    const std::string& io_group = "ExtruderIO",
-                    const std::string& signal = "LapStart",
-                    const std::string& ready = "ExtruderReady") {
-  const std::string gen = dir + "/gen/com/kuka/generated/ioAccess";
-  fs::create_directories(gen);
-  std::ofstream(gen + "/" + io_group + "IOGroup.java")
-      << "package com.kuka.generated.ioAccess;\npublic class " << io_group
-      << "IOGroup {\n  private boolean next = false;\n  public void set" << signal
-      << "(boolean level) { strandtest.Log.line(\"SIGNAL \" + level); }\n  public boolean get"
-      << ready << "() { next = !next; strandtest.Log.line(\"READY \" + next); return next; }\n}\n";
-  const Shell r =
-      shell("cd " + quoted(dir) + " && javac -encoding UTF-8 -nowarn -d classes $(find " +
-            quoted(kStubs) + " gen -name '*.java') " + quoted(java_file));
-  return r.exit_code == 0 ? "" : r.out;
-}
-
-Shell run_java(const std::string& dir, const std::string& cls, const std::string& mode) {
-  return shell("cd " + quoted(dir) + " && java -cp classes strandtest.Main " + cls + " " + mode);
-}
+using namespace sunrise_test;
 
 Eigen::Isometry3d frame(double x, double y, double z, double a, double b, double c) {
   Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
@@ -345,135 +290,6 @@ TEST(SunriseWriter, OnAConcaveMeshTheContactPointMovesAtThePlannedSpeed) {
   expect_application_follows_the_csv(
       "scaffold --nozzle 0.8 --gap 1.5 --size 20x20 --layers 2 --substrate mesh "
       "--substrate-mesh " + quoted(testing::write_concave_bowl_obj(dir)));
-}
-
-const char* const kScaffold =
-    "scaffold --nozzle 0.8 --gap 1.5 --size 20x20 --layers 1 --substrate cylinder "
-    "--substrate-radius 25 --substrate-length 60";
-
-TEST(SunriseWriter, HostileOutputNamesAndCsvDirsStayStrings) {
-  // Quotes, backslashes, \u escapes (javac replaces them before lexing), comment ends, Java
-  // line terminators and other Unicode line separators.
-  const std::vector<std::string> dirs = {
-      "C:/a\";static{INJ42();}static String q=\"",
-      "C:\\u0022;static{INJ42();}//",
-      "C:\\\\u0022;INJ42();",
-      "C:/x*/INJ42();/*",
-      "C:/a\xc2\x85static{INJ42();}",      // NEL
-      "C:/a\xe2\x80\xa8static{INJ42();}",  // LINE SEPARATOR
-      "C:/\xf0\x9f\x98\x80 \\ end\\",      // outside the BMP; a trailing backslash
-  };
-  for (const std::string& csv_dir : dirs) {
-    const std::string dir = testing::fresh_dir("inject");
-    const std::string machine = profile_with(dir, {{"csv_dir", csv_dir}});
-    const std::string output = "a\";static{INJ42();}static String q=\"\\u0022.csv";
-    const auto r = testing::run_strand(
-        std::string(kScaffold) + " --machine " + quoted(machine) + " -o " + quoted(output), dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const std::string cls = java_class_name(output.substr(0, output.size() - 4));
-    ASSERT_TRUE(testing::exists(dir + "/" + cls + ".java")) << cls;
-    ASSERT_EQ(compile(dir, cls + ".java"), "") << csv_dir;
-    const Shell constants = run_java(dir, cls, "constants");
-    ASSERT_EQ(constants.exit_code, 0) << constants.out;
-    // The strings' values are exactly the names given.
-    std::string want_dir, want_name;
-    for (const std::string* s : {&csv_dir, &output}) {
-      std::string& want = s == &csv_dir ? want_dir : want_name;
-      std::u16string u;
-      // UTF-8 -> UTF-16 units, shown as Main.shown does.
-      for (std::size_t i = 0; i < s->size();) {
-        unsigned char c = static_cast<unsigned char>((*s)[i]);
-        char32_t cp;
-        int n = c < 0x80 ? 1 : c < 0xe0 ? 2 : c < 0xf0 ? 3 : 4;
-        cp = n == 1 ? c : c & (0xff >> (n + 1));
-        for (int k = 1; k < n; ++k) cp = (cp << 6) | ((*s)[i + k] & 0x3f);
-        i += n;
-        if (cp >= 0x10000) {
-          u += static_cast<char16_t>(0xd800 + ((cp - 0x10000) >> 10));
-          u += static_cast<char16_t>(0xdc00 + ((cp - 0x10000) & 0x3ff));
-        } else {
-          u += static_cast<char16_t>(cp);
-        }
-      }
-      for (char16_t ch : u) {
-        if (ch >= 0x20 && ch <= 0x7e && ch != '\\') {
-          want += static_cast<char>(ch);
-        } else {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(ch));
-          want += buf;
-        }
-      }
-    }
-    EXPECT_NE(constants.out.find("CSV_DIR=" + want_dir + "\n"), std::string::npos) << constants.out;
-    EXPECT_NE(constants.out.find("CSV_NAME=" + want_name + "\n"), std::string::npos)
-        << constants.out;
-  }
-}
-
-TEST(SunriseWriter, HostileProfileNamesStayComments) {
-  for (const std::string name : {"cell\\u000a static{INJ42();}", "cell\xe2\x80\xa8static{INJ42();}",
-                                 "cell */ static{INJ42();} /*"}) {
-    const std::string dir = testing::fresh_dir("inject-name");
-    const std::string machine = profile_with(dir, nlohmann::json::object(), name);
-    const auto r = testing::run_strand(
-        std::string(kScaffold) + " --machine " + quoted(machine) + " -o p.csv", dir);
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(compile(dir, "P.java"), "")
-        << "javac would only fail on the injected INJ42(): " << name;
-    const std::string krl = testing::slurp(dir + "/p.src");
-    EXPECT_EQ(krl.find("\nstatic"), std::string::npos) << "no line starts with the payload";
-  }
-}
-
-TEST(SunriseWriter, LineBreaksInProfileStringsAreRefusedWhenTheProfileIsRead) {
-  for (const std::string value : {"C:/a\nstatic{INJ42();}", "C:/a\rx"}) {
-    const std::string dir = testing::fresh_dir("lines");
-    const std::string machine = profile_with(dir, {{"csv_dir", value}});
-    const auto r = testing::run_strand(
-        std::string(kScaffold) + " --machine " + quoted(machine) + " -o p.csv", dir);
-    testing::expect_input_error(r, "robot.sunrise.csv_dir");
-    EXPECT_FALSE(testing::exists(dir + "/P.java"));
-  }
-  const std::string dir = testing::fresh_dir("lines-name");
-  const std::string machine = profile_with(dir, nlohmann::json::object(), "cell\nstatic{INJ42();}");
-  const auto r = testing::run_strand(
-      std::string(kScaffold) + " --machine " + quoted(machine) + " -o p.csv", dir);
-  testing::expect_input_error(r, "name");
-  EXPECT_FALSE(testing::exists(dir + "/P.java"));
-}
-
-TEST(SunriseWriter, IdentifiersInTheProfileMustBeJavaIdentifiers) {
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"io_group", "Ex;static{INJ42();}"},
-           {"lap_signal", "Lap\\u0028"},
-           {"lap_signal", "class"},
-           {"io_group", "9Group"},
-           {"io_group", ""},
-           {"ready_signal", "Ready()==x;INJ42();//"},
-           {"tool_template", "Cyl\";INJ42();//"},
-           {"tool_frame", "Cylinder"},
-           {"nozzle_frame", "/Noz\"+INJ42()+\""},
-           {"nozzle_frame", "/Cell//Nozzle"},
-           {"nozzle_frame", "/"}}) {
-    const std::string dir = testing::fresh_dir("ident");
-    const std::string machine = profile_with(dir, {{key, value}});
-    const auto r = testing::run_strand(
-        std::string(kScaffold) + " --machine " + quoted(machine) + " -o p.csv", dir);
-    testing::expect_input_error(r, "robot.sunrise." + key);
-    EXPECT_FALSE(testing::exists(dir + "/p.csv"));
-    EXPECT_FALSE(testing::exists(dir + "/P.java"));
-  }
-}
-
-TEST(SunriseWriter, ClassNamesAreJavaIdentifiersThatDoNotShadowTheImports) {
-  EXPECT_EQ(java_class_name("missing-rib-cylinder"), "MissingRibCylinder");
-  EXPECT_EQ(java_class_name("3d part"), "Strand3dPart");
-  EXPECT_EQ(java_class_name("tool"), "ToolApplication");
-  EXPECT_EQ(java_class_name("frame"), "FrameApplication");
-  EXPECT_EQ(java_class_name("\xc3\xa9t\xc3\xa9"), "T");
-  EXPECT_EQ(java_class_name("--"), "Strand");
-  EXPECT_LE(java_class_name(std::string(500, 'a')).size(), 64u);
 }
 
 }  // namespace

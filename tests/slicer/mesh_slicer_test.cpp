@@ -80,14 +80,6 @@ TEST(MeshSlicer, BoredCylinderSlicesToARegionWithAHole) {
   }
 }
 
-// `b` moved by `offset` added to `a` as more triangles of the same soup (no shared vertices).
-Mesh with(Mesh a, const Mesh& b, const Vec3& offset = Vec3::Zero()) {
-  const int base = static_cast<int>(a.vertices_mm.size());
-  for (const Vec3& v : b.vertices_mm) a.vertices_mm.push_back(v + offset);
-  for (const auto& t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-  return a;
-}
-
 Region rect_region(double x0, double y0, double x1, double y1) {
   return region_from_contours({{Vec2(x0, y0), Vec2(x1, y0), Vec2(x1, y1), Vec2(x0, y1)}});
 }
@@ -117,8 +109,8 @@ double off_boundary_mm(const Region& r, const std::vector<std::array<double, 4>>
 }
 
 TEST(MeshSlicer, TwoOverlappingCubesInOneSoupGiveTheirUnion) {
-  const Mesh soup =
-      with(testing::box_mesh(Vec3(10, 10, 10)), testing::box_mesh(Vec3(10, 10, 10)), Vec3(5, 5, 2));
+  const Mesh soup = testing::with_shell(testing::box_mesh(Vec3(10, 10, 10)),
+                                        testing::box_mesh(Vec3(10, 10, 10)), Vec3(5, 5, 2));
   ASSERT_GT(check_mesh(soup).self_intersections, 0u) << "the soup does cut itself";
   const auto layers = slice_layers(soup, 1.0, 12);
   ASSERT_EQ(layers.size(), 12u);
@@ -150,7 +142,8 @@ TEST(MeshSlicer, DamagedCubesSliceLikeTheCleanCube) {
   Mesh inside_out = clean;
   for (auto& t : inside_out.triangles) std::swap(t[1], t[2]);
   // A second cube touching the first at its top corner (10, 10, 10) only.
-  const Mesh touching = with(clean, testing::box_mesh(Vec3(3, 3, 3)), Vec3(10, 10, 10));
+  const Mesh touching =
+      testing::with_shell(clean, testing::box_mesh(Vec3(3, 3, 3)), Vec3(10, 10, 10));
   // Every face pulled 0.05 mm in from its own edges: cracks of 0.05 mm along all 12 edges.
   Mesh cracked;
   for (const auto& t : clean.triangles) {
@@ -204,7 +197,7 @@ TEST(MeshSlicer, CavityStaysAHole) {
   // A 20 mm cube with a closed 10 mm cavity (inward-facing shell) in its middle.
   Mesh cavity = testing::box_mesh(Vec3(10, 10, 10));
   for (auto& t : cavity.triangles) std::swap(t[1], t[2]);
-  const Mesh part = with(testing::box_mesh(Vec3(20, 20, 20)), cavity, Vec3(5, 5, 5));
+  const Mesh part = testing::with_shell(testing::box_mesh(Vec3(20, 20, 20)), cavity, Vec3(5, 5, 5));
   const Region r = slice_layers(part, 1.0, 20)[10];
   ASSERT_EQ(r.size(), 1u);
   ASSERT_EQ(r[0].holes.size(), 1u);

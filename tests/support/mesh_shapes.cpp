@@ -351,4 +351,11 @@ std::string write_concave_bowl_obj(const std::string& dir) {
   return path;
 }
 
+slicer::Mesh with_shell(slicer::Mesh a, const slicer::Mesh& b, const slicer::Vec3& offset) {
+  const int base = static_cast<int>(a.vertices_mm.size());
+  for (const auto& v : b.vertices_mm) a.vertices_mm.push_back(v + offset);
+  for (const auto& t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return a;
+}
+
 }  // namespace strand::testing

@@ -10,6 +10,9 @@ namespace strand::testing {
 
 // Axis-aligned box from (0, 0, 0) to size, 12 triangles, outward.
 slicer::Mesh box_mesh(const slicer::Vec3& size_mm);
+// `b` moved by `offset` added to `a` as more triangles of one soup (no shared vertices): two
+// shells that overlap without cutting each other, as in many real files.
+slicer::Mesh with_shell(slicer::Mesh a, const slicer::Mesh& b, const slicer::Vec3& offset);
 // Cylinder along z from z = 0 to height, radius r, `segments` around; with bore_mm > 0 a
 // coaxial hole of that radius runs through it. Vertices lie on the true circles.
 slicer::Mesh tube_mesh(double radius_mm, double bore_mm, double height_mm, int segments);
