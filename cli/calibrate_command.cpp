@@ -9,6 +9,8 @@
 
 namespace strand::cli {
 
+using jobs::calibrate_files;
+
 void add_calibrate_command(CLI::App& app, Action& action) {
   auto files = std::make_shared<std::vector<std::string>>();
   auto output = std::make_shared<std::string>();

@@ -10,7 +10,7 @@
 
 #include "cli/param_flags.h"
 #include "cli/commands.h"
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
 #include "postprocess/inspect/check_stream.h"

@@ -11,7 +11,7 @@
 #include "jobs/ink_profile.h"
 #include "jobs/job_runner.h"
 #include "cli/param_flags.h"
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -20,6 +20,15 @@
 #include "slicer/tolerances.h"
 
 namespace strand::cli {
+
+using jobs::JobSettings;
+using jobs::JobSpec;
+using jobs::apply_ink_profile;
+using jobs::job_output_path;
+using jobs::job_spec_from_json;
+using jobs::load_ink_profile;
+using jobs::run_job;
+using jobs::viewer_output_path;
 
 namespace {
 

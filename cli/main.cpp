@@ -10,7 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/manual.h"
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 #include "cli/suggest.h"
 #include "cli/version.h"
 #include "slicer/file_io.h"

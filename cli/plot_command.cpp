@@ -7,7 +7,7 @@
 #include "cli/commands.h"
 #include "cli/output_path.h"
 #include "cli/param_flags.h"
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 #include "jobs/plot_options.h"
 #include "jobs/plot_pipeline.h"
 #include "jobs/trace_input.h"
@@ -19,6 +19,19 @@
 #include "slicer/svg_import.h"
 
 namespace strand::cli {
+
+using jobs::PlotRequest;
+using jobs::PlotResult;
+using jobs::TracedImage;
+using jobs::draw_text_into;
+using jobs::plot_drawing;
+using jobs::plot_options;
+using jobs::plot_table;
+using jobs::text_options;
+using jobs::trace_file;
+using jobs::trace_options;
+using jobs::trace_table;
+using jobs::use_traced;
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include "cli/param_flags.h"
 #include "cli/commands.h"
 #include "cli/output_path.h"
-#include "cli/progress.h"
-#include "cli/curved_preview.h"
+#include "cli/progress_bar.h"
+#include "jobs/curved_preview.h"
 #include "postprocess/inspect/curved_files.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "postprocess/preview/preview_gltf.h"
@@ -23,6 +23,8 @@
 #include "slicer/unit_values.h"
 
 namespace strand::cli {
+
+using jobs::curved_file_scene;
 
 namespace {
 

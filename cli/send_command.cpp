@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 #include "jobs/send_estimate.h"
 #include "machines/gcode_format.h"
 #include "machines/send/resume.h"
@@ -23,6 +23,9 @@
 #include "slicer/input_error.h"
 
 namespace strand::cli {
+
+using jobs::time_left_after;
+using jobs::time_left_at;
 
 namespace {
 

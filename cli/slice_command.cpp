@@ -10,7 +10,7 @@
 #include "cli/param_flags.h"
 #include "cli/commands.h"
 #include "cli/output_path.h"
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 #include "jobs/slice_job.h"
 #include "jobs/slice_layer_stats.h"
 #include "jobs/job_runner.h"
@@ -32,6 +32,7 @@ namespace strand::cli {
 
 using jobs::SliceResult;
 using jobs::SliceSettings;
+using jobs::viewer_output_path;
 
 namespace {
 

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 #include "jobs/content_hash.h"
 #include "jobs/sweep_manifest.h"
 #include "jobs/sweep_runner.h"
@@ -18,6 +18,33 @@
 #include "slicer/json_input.h"
 
 namespace strand::cli {
+
+using jobs::Shard;
+using jobs::ShardState;
+using jobs::SlurmMode;
+using jobs::SlurmRequest;
+using jobs::SlurmSubmission;
+using jobs::SweepOptions;
+using jobs::SweepProgress;
+using jobs::SweepResult;
+using jobs::SweepSpec;
+using jobs::SweepStatus;
+using jobs::array_ranges;
+using jobs::command_line;
+using jobs::expand_points;
+using jobs::failed_point_lines;
+using jobs::fnv1a_hex;
+using jobs::manifest_file_name;
+using jobs::merge_manifests;
+using jobs::missing_shards_message;
+using jobs::parse_shard;
+using jobs::run_sweep;
+using jobs::slurm_dir;
+using jobs::state_name;
+using jobs::submit_sweep;
+using jobs::sweep_spec_from_json;
+using jobs::sweep_status;
+using jobs::write_manifest;
 
 namespace {
 

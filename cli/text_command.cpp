@@ -16,6 +16,11 @@
 
 namespace strand::cli {
 
+using jobs::PlotRequest;
+using jobs::PlotResult;
+using jobs::draw_text_into;
+using jobs::plot_drawing;
+
 namespace {
 
 const slicer::ParamTable& text_table() {

@@ -6,13 +6,18 @@
 #include "cli/commands.h"
 #include "cli/output_path.h"
 #include "cli/param_flags.h"
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 #include "jobs/trace_input.h"
 #include "machines/gcode_format.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 
 namespace strand::cli {
+
+using jobs::TracedImage;
+using jobs::trace_file;
+using jobs::trace_options;
+using jobs::trace_table;
 
 namespace {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 
-namespace strand::cli {
+namespace strand::jobs {
 
 std::string fnv1a_hex(std::string_view bytes) {
   constexpr std::uint64_t kOffsetBasis = 14695981039346656037ULL;
@@ -19,4 +19,4 @@ std::string fnv1a_hex(std::string_view bytes) {
   return text;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

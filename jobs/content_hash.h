@@ -5,8 +5,8 @@
 #include <string>
 #include <string_view>
 
-namespace strand::cli {
+namespace strand::jobs {
 
 std::string fnv1a_hex(std::string_view bytes);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -9,7 +9,7 @@
 #include "slicer/substrate_params.h"
 #include "slicer/units.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -71,4 +71,4 @@ post::Produced run_curved_job(const patterns::GeneratorSpec& g, const nlohmann::
   return out;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -9,7 +9,7 @@
 #include "jobs/job_runner.h"
 #include "postprocess/plan/produce_curved.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // In memory; nothing is written. Throws InputError for every bad input (see produce_curved).
 post::CurvedProduced produce_curved_job(const patterns::GeneratorSpec& generator,
@@ -20,4 +20,4 @@ post::CurvedProduced produce_curved_job(const patterns::GeneratorSpec& generator
 post::Produced run_curved_job(const patterns::GeneratorSpec& generator,
                               const nlohmann::json& params, const JobSettings& settings);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -12,7 +12,7 @@
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -199,4 +199,4 @@ nlohmann::json apply_ink_profile(const nlohmann::json& profile, const std::strin
           {"measurements", profile.value("measurements", nlohmann::json::array())}};
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

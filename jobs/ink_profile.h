@@ -8,7 +8,7 @@
 
 #include "slicer/params.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // width = a * flow^p * speed^q (speed in mm/min), fitted by least squares on the logarithms.
 struct WidthModel {
@@ -50,4 +50,4 @@ nlohmann::json load_ink_profile(const std::string& name_or_path);
 nlohmann::json apply_ink_profile(const nlohmann::json& profile, const std::string& name,
                                  const slicer::ParamTable& table, nlohmann::json& given);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

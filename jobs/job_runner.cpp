@@ -13,7 +13,7 @@
 #include "slicer/json_input.h"
 #include "slicer/params.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -228,4 +228,4 @@ post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann:
   return produced;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -8,10 +8,10 @@
 
 #include "patterns/registry.h"
 #include "postprocess/plan/produce.h"
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 #include "slicer/tolerances.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 struct JobSettings {
   std::string machine = "deltawasp-2040-clay";
@@ -76,4 +76,4 @@ std::string viewer_output_path(const std::string& gcode_path);
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& settings);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

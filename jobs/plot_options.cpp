@@ -3,7 +3,7 @@
 
 #include "slicer/input_error.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 const slicer::ParamTable& plot_table() {
   using slicer::ParamType;
@@ -72,4 +72,4 @@ void use_traced(PlotRequest& r, const TracedImage& t, const nlohmann::json& trac
   }
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -11,7 +11,7 @@
 #include "slicer/params.h"
 #include "slicer/text_layout.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // fit, scale, offset, tolerance, pens, fill, hatch-angle, text, font, text-width, hatch-spacing.
 const slicer::ParamTable& plot_table();
@@ -31,4 +31,4 @@ void use_traced(PlotRequest& request, const TracedImage& traced,
                 const nlohmann::json& trace_resolved, bool hatch_angle_given,
                 const std::string& label);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

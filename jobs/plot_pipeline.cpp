@@ -11,7 +11,7 @@
 #include "slicer/memory.h"
 #include "slicer/params.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -137,4 +137,4 @@ PlotResult plot_drawing(PlotRequest r, const machines::MachineProfile& m,
   return out;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

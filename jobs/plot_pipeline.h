@@ -10,12 +10,12 @@
 
 #include "machines/profile.h"
 #include "postprocess/plot/plot_layout.h"
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 #include "slicer/svg_import.h"
 #include "slicer/text_layout.h"
 #include "slicer/toolpath.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 struct PlotRequest {
   std::string input;              // file name (or label) for the header and the report
@@ -44,4 +44,4 @@ void draw_text_into(PlotRequest& request, const slicer::TextOptions& o);
 PlotResult plot_drawing(PlotRequest request, const machines::MachineProfile& m,
                         slicer::Progress* progress = nullptr);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -6,7 +6,7 @@
 #include "postprocess/inspect/gcode_parser.h"
 #include "slicer/motion.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 std::map<int, double> time_left_after(const std::string& gcode_text) {
   const post::ParsedGcode parsed = post::parse_gcode(gcode_text);
@@ -35,4 +35,4 @@ double time_left_at(const std::map<int, double>& left, int line) {
   return it == left.begin() ? left.begin()->second : std::prev(it)->second;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

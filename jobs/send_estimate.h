@@ -5,7 +5,7 @@
 #include <map>
 #include <string>
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // Seconds still to run after each line that moves or dwells (distance / feed plus dwells).
 std::map<int, double> time_left_after(const std::string& gcode_text);
@@ -14,4 +14,4 @@ std::map<int, double> time_left_after(const std::string& gcode_text);
 // whole file's time before the first one); 0 for a file without moves.
 double time_left_at(const std::map<int, double>& left, int line);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

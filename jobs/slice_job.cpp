@@ -402,7 +402,7 @@ SliceResult produce_slice(const SliceSettings& s) {
   SliceResult out = arena.execute(
       [&] { return s.onto.empty() ? slice_part(s, *g, machine) : produce_onto(s, *g, machine); });
   slicer::progress_phase(s.progress, "checking");
-  cli::vet_produced(out.produced, machine, s.arc_tolerance_mm);
+  vet_produced(out.produced, machine, s.arc_tolerance_mm);
   return out;
 }
 

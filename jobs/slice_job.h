@@ -10,7 +10,7 @@
 
 #include "postprocess/plan/produce.h"
 #include "slicer/mesh_check.h"
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 #include "slicer/tolerances.h"
 
 namespace strand::jobs {

@@ -7,7 +7,7 @@
 #include "postprocess/inspect/check.h"
 #include "slicer/tolerances.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 nlohmann::json sweep_check_summary(std::string_view gcode, const std::string& machine) {
   const machines::MachineProfile m = machines::load_profile(machine);
@@ -27,4 +27,4 @@ nlohmann::json sweep_check_summary(std::string_view gcode, const std::string& ma
           {"max_strands_per_layer", max_strands}};
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -6,10 +6,10 @@
 #include <string>
 #include <string_view>
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // {"ok", "parse_issues", "crossings", "touches", "arcs_forbidden", "outside_volume", "layers",
 // "max_strands_per_layer"}; ok is post::CheckReport::ok().
 nlohmann::json sweep_check_summary(std::string_view gcode, const std::string& machine);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

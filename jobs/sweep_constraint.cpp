@@ -8,7 +8,7 @@
 
 #include "slicer/input_error.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 struct Constraint::Node {
   char kind = 'n';  // 'n' number, 'v' variable, '+', '-', '*', '/', 'u' (unary minus)
@@ -172,4 +172,4 @@ bool holds(const Constraint& c, const std::map<std::string, double>& values) {
   return std::abs(a - b) > slack;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

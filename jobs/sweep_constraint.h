@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // Grammar: constraint := expr OP expr, OP one of < <= > >= == !=;
 // expr := term (("+" | "-") term)*; term := factor (("*" | "/") factor)*;
@@ -30,4 +30,4 @@ Constraint parse_constraint(const std::string& text, const std::string& where);
 // True when the point satisfies the constraint. `values` must hold every name in c.names.
 bool holds(const Constraint& c, const std::map<std::string, double>& values);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -5,7 +5,7 @@
 
 #include "slicer/params.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -144,4 +144,4 @@ std::string sweep_index_html(const nlohmann::json& m) {
   return h + kScript;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -5,10 +5,10 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // Self-contained HTML (inline CSS and script, no network); paths are relative to DIR. Once
 // loaded, #status reads "cards: N, thumbnails shown: M".
 std::string sweep_index_html(const nlohmann::json& manifest);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -13,7 +13,7 @@
 #include "jobs/sweep_manifest.h"
 #include "slicer/input_error.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -97,4 +97,4 @@ bool journal_in_use(const std::string& path) {
   return busy;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

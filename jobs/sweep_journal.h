@@ -12,7 +12,7 @@
 
 #include "jobs/sweep_spec.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // "manifest.journal.jsonl" for 1/1, else "manifest-shard-I-of-N.journal.jsonl".
 std::string journal_file_name(const Shard& shard);
@@ -45,4 +45,4 @@ std::size_t journal_sweep_points(const std::string& path);
 // Whether a run holds the journal's lock now (false when there is no journal).
 bool journal_in_use(const std::string& path);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -10,7 +10,7 @@
 #include "slicer/input_error.h"
 #include "slicer/params.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -132,4 +132,4 @@ nlohmann::json merge_manifests(const std::vector<nlohmann::json>& shards, const 
   return m;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

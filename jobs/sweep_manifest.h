@@ -8,7 +8,7 @@
 
 #include "jobs/sweep_spec.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // "manifest.json" for 1/1, else "manifest-shard-I-of-N.json".
 std::string manifest_file_name(const Shard& shard);
@@ -31,4 +31,4 @@ void write_manifest(const nlohmann::json& manifest, const std::string& dir, cons
 nlohmann::json merge_manifests(const std::vector<nlohmann::json>& shards,
                                const std::vector<std::string>& paths);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

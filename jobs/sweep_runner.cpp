@@ -19,7 +19,7 @@
 #include "slicer/json_input.h"
 #include "slicer/tolerances.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace fs = std::filesystem;
 
@@ -198,4 +198,4 @@ SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const
   return r;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -10,7 +10,7 @@
 #include "postprocess/preview/preview_scene.h"
 #include "jobs/sweep_spec.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 struct SweepOptions {
   std::string dir;        // output directory (created if missing)
@@ -46,4 +46,4 @@ SweepResult run_sweep(const SweepSpec& spec, const nlohmann::json& source, const
 // The thumbnail drawn for each point: top view of every layer, coloured by feature.
 std::string thumbnail_png(const post::PreviewScene& scene);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -9,7 +9,7 @@
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace fs = std::filesystem;
 
@@ -211,4 +211,4 @@ std::vector<std::string> failed_point_lines(const nlohmann::json& manifest, cons
   return lines;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -11,7 +11,7 @@
 
 #include "jobs/sweep_spec.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 struct SlurmRequest {
   std::string strand;    // absolute path of the strand program the tasks run
@@ -58,4 +58,4 @@ std::string missing_shards_message(const std::string& dir);
 // sweep its array task and log.
 std::vector<std::string> failed_point_lines(const nlohmann::json& manifest, const std::string& dir);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

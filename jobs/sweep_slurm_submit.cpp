@@ -17,7 +17,7 @@
 
 extern char** environ;
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace fs = std::filesystem;
 
@@ -183,4 +183,4 @@ SlurmSubmission submit_sweep(SlurmRequest r, const std::string& sweep_hash, std:
   return s;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

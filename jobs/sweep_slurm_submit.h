@@ -8,7 +8,7 @@
 
 #include "jobs/sweep_slurm.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 struct ProcessResult {
   int exit_code = -1;  // 128 + signal when killed; 127 when the program cannot be started
@@ -39,4 +39,4 @@ struct SlurmMode {
 SlurmSubmission submit_sweep(SlurmRequest request, const std::string& sweep_hash, std::size_t points,
                              const SlurmMode& mode);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -10,7 +10,7 @@
 #include "slicer/json_input.h"
 #include "slicer/params.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -235,4 +235,4 @@ Shard parse_shard(const std::string& text) {
 
 bool in_shard(int point_index, const Shard& shard) { return point_index % shard.count == shard.index - 1; }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

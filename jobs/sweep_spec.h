@@ -9,7 +9,7 @@
 #include "jobs/job_runner.h"
 #include "jobs/sweep_constraint.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 enum class SweepMode { Product, Zip };
 
@@ -52,4 +52,4 @@ Shard parse_shard(const std::string& text);
 // Points are dealt round-robin: point p belongs to shard (p mod N) + 1.
 bool in_shard(int point_index, const Shard& shard);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -12,7 +12,7 @@
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace fs = std::filesystem;
 
@@ -117,4 +117,4 @@ SweepStatus sweep_status(const std::string& dir) {
   return status;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -8,7 +8,7 @@
 
 #include "jobs/sweep_spec.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 enum class ShardState { NotStarted, Running, Stopped, Finished };
 
@@ -33,4 +33,4 @@ SweepStatus sweep_status(const std::string& dir);
 
 const char* state_name(ShardState s);  // "not started", "running", "stopped", "finished"
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -10,7 +10,7 @@
 #include "slicer/image.h"
 #include "slicer/input_error.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 const slicer::ParamTable& trace_table() {
   using slicer::ParamType;
@@ -128,4 +128,4 @@ slicer::SvgDrawing drawing_of(const std::vector<slicer::SvgLayer>& layers,
   return d;
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -7,11 +7,11 @@
 #include <vector>
 
 #include "slicer/params.h"
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 #include "slicer/svg_export.h"
 #include "slicer/trace.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 const slicer::ParamTable& trace_table();
 slicer::TraceOptions trace_options(const nlohmann::json& resolved);
@@ -33,4 +33,4 @@ TracedImage trace_bytes(const std::string& bytes, const std::string& label, cons
 // The layers as an imported drawing (what `strand plot` lays out).
 slicer::SvgDrawing drawing_of(const std::vector<slicer::SvgLayer>& layers, const slicer::Vec2& size_mm);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

@@ -9,7 +9,7 @@
 
 #include "machines/profile.h"
 #include "slicer/motion.h"
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 
 namespace strand::machines {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "patterns/region_pattern.h"
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 #include "slicer/layer_source.h"
 #include "slicer/region.h"
 #include "slicer/toolpath.h"

@@ -72,7 +72,7 @@ std::string tables_json() {
   for (const auto& g : patterns::generators())
     gens.push_back({{"name", g.name}, {"summary", g.summary}, {"params", table_json(g.table())}});
   return slicer::dump_json({{"generators", gens},
-                            {"plot", table_json(cli::plot_table())},
+                            {"plot", table_json(jobs::plot_table())},
                             {"substrate", table_json(slicer::substrate_table())}});
 }
 
@@ -112,7 +112,7 @@ double arc_tolerance(const std::string& text) {
 
 // A flat job in memory with its program kept, or a curved job's files.
 std::shared_ptr<RawResult> produce(const patterns::GeneratorSpec& g, const nlohmann::json& params,
-                                   cli::JobSettings s, py::object callback) {
+                                   jobs::JobSettings s, py::object callback) {
   PyProgress progress(std::move(callback));
   s.progress = &progress;
   s.keep_program = true;
@@ -121,15 +121,15 @@ std::shared_ptr<RawResult> produce(const patterns::GeneratorSpec& g, const nlohm
   r->arc_tolerance_mm = s.arc_tolerance_mm;
   py::gil_scoped_release release;
   if (s.substrate.empty()) {
-    post::Produced p = cli::produce_job(g, params, s);
-    r->name = cli::job_output_path(g, s);
+    post::Produced p = jobs::produce_job(g, params, s);
+    r->name = jobs::job_output_path(g, s);
     r->gcode = std::move(p.gcode);
     r->files = {{r->name, r->gcode}};
     r->report = std::move(p.report);
     r->summary = std::move(p.summary);
     r->program = std::make_shared<const slicer::MotionProgram>(std::move(p.program));
   } else {
-    post::CurvedProduced c = cli::produce_curved_job(g, params, s);
+    post::CurvedProduced c = jobs::produce_curved_job(g, params, s);
     r->files = std::move(c.files);
     r->name = r->files.front().first;
     r->gcode = r->files.front().second;
@@ -144,7 +144,7 @@ std::shared_ptr<RawResult> run_generator(const std::string& name, const Texts& t
                                          const std::string& arc_text, py::object callback) {
   const patterns::GeneratorSpec* g = patterns::find_generator(name);
   if (!g) throw InputError("generator = " + name + ": unknown");
-  cli::JobSettings s;
+  jobs::JobSettings s;
   if (!machine.empty()) s.machine = machine;
   if (!arc_text.empty()) s.arc_tolerance_mm = arc_tolerance(arc_text);
   s.substrate = given(slicer::substrate_table(), substrate);
@@ -157,7 +157,7 @@ std::shared_ptr<RawResult> run_job(const std::string& text, const std::string& p
   const nlohmann::json j = path.empty() ? slicer::parse_json(text, "job")
                                         : slicer::parse_json(slicer::read_file(path), "job = " + path);
   if (!j.is_object()) throw InputError("job" + (path.empty() ? "" : " = " + path) + ": must be a JSON object");
-  cli::JobSpec job = cli::job_spec_from_json(j, "job");
+  jobs::JobSpec job = jobs::job_spec_from_json(j, "job");
   auto& substrate = job.settings.substrate;
   if (!path.empty()) {
     if (substrate.is_object() && substrate.contains("mesh") && substrate.at("mesh").is_string()) {
@@ -174,24 +174,24 @@ std::shared_ptr<RawResult> run_job(const std::string& text, const std::string& p
 std::pair<std::string, std::string> run_sweep(const std::string& text, const std::string& dir, int jobs,
                                               bool previews, py::object callback) {
   const nlohmann::json source = slicer::parse_json(text, "sweep");
-  const cli::SweepSpec spec = cli::sweep_spec_from_json(source);
-  cli::SweepOptions o;
+  const jobs::SweepSpec spec = jobs::sweep_spec_from_json(source);
+  jobs::SweepOptions o;
   o.dir = dir;
   o.jobs = jobs;
   o.previews = previews;
   // Called under the runner's lock from any worker; Ctrl-C is seen when the main thread
   // (which works in the arena too) finishes a point.
-  const cli::ProgressFn progress = [&callback](const cli::SweepProgress& p) {
+  const jobs::ProgressFn progress = [&callback](const jobs::SweepProgress& p) {
     py::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     if (!callback.is_none()) callback("sweep", p.done, p.total);
   };
-  cli::SweepResult r;
+  jobs::SweepResult r;
   {
     py::gil_scoped_release release;
-    r = cli::run_sweep(spec, source, o, progress);
+    r = jobs::run_sweep(spec, source, o, progress);
   }
-  return {slicer::dump_json(r.manifest), cli::manifest_csv(r.manifest)};
+  return {slicer::dump_json(r.manifest), jobs::manifest_csv(r.manifest)};
 }
 
 // `strand plot DRAWING.svg --machine M`, in memory.
@@ -201,15 +201,15 @@ std::shared_ptr<RawResult> run_plot(const std::string& svg, const Texts& texts, 
   auto r = std::make_shared<RawResult>();
   r->machine = machine;
   r->name = std::filesystem::path(svg).filename().replace_extension(".gcode").string();
-  cli::PlotRequest request;
-  request.parameters = slicer::resolve_params(cli::plot_table(), given(cli::plot_table(), texts));
-  request.options = cli::plot_options(request.parameters, mirror, order);
+  jobs::PlotRequest request;
+  request.parameters = slicer::resolve_params(jobs::plot_table(), given(jobs::plot_table(), texts));
+  request.options = jobs::plot_options(request.parameters, mirror, order);
   request.input = svg;
   py::gil_scoped_release release;
   const machines::MachineProfile m = machines::load_profile(machine);
   request.drawing = slicer::import_svg(slicer::read_file(svg), svg);
-  cli::draw_text_into(request, cli::text_options(request.parameters));
-  cli::PlotResult p = cli::plot_drawing(std::move(request), m, &progress);
+  jobs::draw_text_into(request, jobs::text_options(request.parameters));
+  jobs::PlotResult p = jobs::plot_drawing(std::move(request), m, &progress);
   p.report["gcode"] = r->name;
   r->gcode = std::move(p.gcode);
   r->files = {{r->name, r->gcode}};

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "slicer/motion.h"
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 
 namespace strand::python {
 

@@ -167,13 +167,13 @@ json Api::State::summary_of(const JobRow& row, bool with_report) {
 
 // Runs on a worker: the job written by jobs/ exactly as `strand job` writes it, then the
 // check and the previews of its G-code.
-json Api::State::produce(std::int64_t id, const cli::JobSpec& spec, const std::string& ext) {
+json Api::State::produce(std::int64_t id, const jobs::JobSpec& spec, const std::string& ext) {
   const fs::path d = job_dir(id);
-  cli::JobSettings st = spec.settings;
+  jobs::JobSettings st = spec.settings;
   st.inputs.clear();
   st.output = (d / (spec.generator->name + ext)).string();
   st.report = (d / "report.json").string();
-  const post::Produced produced = cli::run_job(*spec.generator, spec.params, st);
+  const post::Produced produced = jobs::run_job(*spec.generator, spec.params, st);
   // The summary names the files as the gallery does: without the data directory.
   std::string summary = produced.summary;
   const std::string prefix = d.string() + "/";
@@ -183,11 +183,11 @@ json Api::State::produce(std::int64_t id, const cli::JobSpec& spec, const std::s
   const std::string base = "/api/jobs/" + std::to_string(id) + "/files/";
   if (ext == ".gcode") {
     const std::string gcode = slicer::read_file(st.output);
-    result["check"] = cli::sweep_check_summary(gcode, st.machine);
+    result["check"] = jobs::sweep_check_summary(gcode, st.machine);
     try {
       const post::PreviewScene scene =
           post::preview_scene(post::parse_gcode(gcode).program, slicer::kDefaultArcToleranceMm);
-      slicer::write_file_atomic((d / "preview.png").string(), cli::thumbnail_png(scene));
+      slicer::write_file_atomic((d / "preview.png").string(), jobs::thumbnail_png(scene));
       slicer::write_file_atomic((d / "preview.html").string(),
                                 post::render_html(scene, spec.generator->name + ".gcode"));
     } catch (const std::exception&) {  // no preview for a file the viewer cannot draw
@@ -227,7 +227,7 @@ Response Api::State::run(const Request& r, bool save) {
   // Paths are the server's to choose: a job file's own output and report are ignored.
   j.erase("output");
   j.erase("report");
-  const cli::JobSpec spec = cli::job_spec_from_json(j, "job");
+  const jobs::JobSpec spec = jobs::job_spec_from_json(j, "job");
   const auto catalog = machines::profile_catalog();
   if (std::none_of(catalog.begin(), catalog.end(), [&](const auto& p) { return p.name == spec.settings.machine; })) {
     throw InputError("job.machine = " + spec.settings.machine.substr(0, 200) +

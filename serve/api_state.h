@@ -17,7 +17,7 @@
 #include "serve/store.h"
 #include "serve/worker_pool.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 struct JobSpec;
 }
 
@@ -76,7 +76,7 @@ struct Api::State {
   // POST /api/sweeps, GET /api/sweeps/{id}/files/... (sweep_api.cpp).
   Response route_sweeps(const Request& r);
   Response run(const Request& r, bool save);
-  nlohmann::json produce(std::int64_t id, const cli::JobSpec& spec, const std::string& ext);
+  nlohmann::json produce(std::int64_t id, const jobs::JobSpec& spec, const std::string& ext);
   nlohmann::json summary_of(const JobRow& row, bool with_report);
 };
 

@@ -105,12 +105,12 @@ PlotForm read_plot_form(const Request& r) {
       check_name(f.name);
     } else if (k == "mirror" || k == "order") {
       (k == "mirror" ? f.mirror : f.order) = flag_value(k, u.content);
-    } else if (const auto* d = find_def(cli::plot_table(), k)) {
+    } else if (const auto* d = find_def(jobs::plot_table(), k)) {
       if (!u.content.empty())
-        f.plot_given[k] = slicer::parse_param_text(cli::plot_table(), *d, u.content);
-    } else if (const auto* t = find_def(cli::trace_table(), k)) {
+        f.plot_given[k] = slicer::parse_param_text(jobs::plot_table(), *d, u.content);
+    } else if (const auto* t = find_def(jobs::trace_table(), k)) {
       if (!u.content.empty())
-        f.trace_given[k] = slicer::parse_param_text(cli::trace_table(), *t, u.content);
+        f.trace_given[k] = slicer::parse_param_text(jobs::trace_table(), *t, u.content);
     } else {
       throw InputError("plot." + k.substr(0, 40) +
                        ": unknown field (file or svg, machine, name, mirror, order, "
@@ -140,33 +140,33 @@ void check_plotter(const std::string& name) {
 // written into `d`, and the check and previews of the G-code.
 json plot_into(const fs::path& d, std::int64_t id, const PlotForm& f, const json& plot_values,
                const json& trace_values) {
-  cli::PlotRequest r;
+  jobs::PlotRequest r;
   r.parameters = plot_values;
-  r.options = cli::plot_options(plot_values, f.mirror, f.order);
+  r.options = jobs::plot_options(plot_values, f.mirror, f.order);
   r.input = f.input;
   const machines::MachineProfile m = machines::load_profile(f.machine);
   if (f.image) {
-    const cli::TracedImage t =
-        cli::trace_bytes(f.drawing, f.input, cli::trace_options(trace_values));
-    cli::use_traced(r, t, trace_values, f.plot_given.contains("hatch-angle"), f.input);
+    const jobs::TracedImage t =
+        jobs::trace_bytes(f.drawing, f.input, jobs::trace_options(trace_values));
+    jobs::use_traced(r, t, trace_values, f.plot_given.contains("hatch-angle"), f.input);
   } else {
     r.drawing = slicer::import_svg(f.drawing, f.input);
-    cli::draw_text_into(r, cli::text_options(plot_values));
+    jobs::draw_text_into(r, jobs::text_options(plot_values));
   }
-  cli::PlotResult p = cli::plot_drawing(std::move(r), m);
+  jobs::PlotResult p = jobs::plot_drawing(std::move(r), m);
   p.report["gcode"] = "drawing.gcode";
   slicer::write_file_atomic((d / f.input).string(), f.drawing);
   slicer::write_file_atomic((d / "drawing.gcode").string(), p.gcode);
   slicer::write_file_atomic((d / "report.json").string(), slicer::dump_json(p.report) + "\n");
   json result = {{"summary", p.summary},
                  {"report", p.report},
-                 {"check", cli::sweep_check_summary(p.gcode, f.machine)}};
+                 {"check", jobs::sweep_check_summary(p.gcode, f.machine)}};
   result["figures"] = {{"time_s", p.report["estimate"]["time_s"]},
                        {"strokes", p.report["strokes"]["after_merge"]}};
   const post::ParsedGcode parsed = post::parse_gcode(p.gcode);
   const post::PreviewScene scene =
       post::preview_scene(parsed.program, slicer::kDefaultArcToleranceMm, parsed.pen_colours);
-  slicer::write_file_atomic((d / "preview.png").string(), cli::thumbnail_png(scene));
+  slicer::write_file_atomic((d / "preview.png").string(), jobs::thumbnail_png(scene));
   slicer::write_file_atomic((d / "preview.html").string(),
                             post::render_html(scene, "drawing.gcode"));
   const std::string base = "/api/jobs/" + std::to_string(id) + "/files/";
@@ -208,12 +208,12 @@ Response Api::State::route_plot(const Request& r) {
   const PlotForm f = read_plot_form(r);
   check_plotter(f.machine);
   // Checked here, before a job exists: a bad option is a 400 with the CLI's line.
-  const json plot_values = slicer::resolve_params(cli::plot_table(), f.plot_given);
-  cli::plot_options(plot_values, f.mirror, f.order);
-  if (!f.image) cli::text_options(plot_values);
+  const json plot_values = slicer::resolve_params(jobs::plot_table(), f.plot_given);
+  jobs::plot_options(plot_values, f.mirror, f.order);
+  if (!f.image) jobs::text_options(plot_values);
   const json trace_values =
-      f.image ? slicer::resolve_params(cli::trace_table(), f.trace_given) : json();
-  if (f.image) cli::trace_options(trace_values);
+      f.image ? slicer::resolve_params(jobs::trace_table(), f.trace_given) : json();
+  if (f.image) jobs::trace_options(trace_values);
   if (!options.run_jobs) return json_response(200, {{"checked", true}});
 
   const json job = {

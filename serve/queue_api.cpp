@@ -123,7 +123,7 @@ Response add_entry(Store& store, Queue& queue, const Request& r) {
   const json spec = json::parse(row->job, nullptr, false);
   const std::string machine = spec.is_object() && spec.contains("machine") && spec.at("machine").is_string()
                                   ? spec.at("machine").get<std::string>()
-                                  : cli::JobSettings{}.machine;
+                                  : jobs::JobSettings{}.machine;
   const std::optional<MachinePort> saved = queue.saved_machine(machine);
   QueueRow q;
   q.job = job_id;

@@ -90,7 +90,7 @@ void Queue::run(std::int64_t id, const std::string& kind, Port* port) {
       }
       const std::int64_t before = total - static_cast<std::int64_t>(cmds.size());
       acked = before;
-      const std::map<int, double> left = cli::time_left_after(text);
+      const std::map<int, double> left = jobs::time_left_after(text);
       machines::SerialPort serial(r.port, r.baud);
       {
         const std::lock_guard<std::mutex> lock(mu_);
@@ -98,7 +98,7 @@ void Queue::run(std::int64_t id, const std::string& kind, Port* port) {
         row.total = total;
         row.acked = acked;
         store_.update(row);
-        live_.at(id)->time_left_s = cli::time_left_at(left, line);
+        live_.at(id)->time_left_s = jobs::time_left_at(left, line);
       }
       publish(id, false);
       if (!run_extra(serial, fw, preamble, o)) throw InputError("the controller refused the resume preamble");
@@ -122,7 +122,7 @@ void Queue::run(std::int64_t id, const std::string& kind, Port* port) {
           row.resume_line = resume_line;
           row.acked = acked;
           Live& l = *live_.at(id);
-          l.time_left_s = cli::time_left_at(left, line);
+          l.time_left_s = jobs::time_left_at(left, line);
           if (note) {
             l.messages.push_back(reply.text.substr(0, 200));
             if (l.messages.size() > kKeptFirmwareMessages) l.messages.pop_front();

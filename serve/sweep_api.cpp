@@ -24,7 +24,7 @@ using nlohmann::json;
 namespace {
 
 // The sweep file without its name and output paths, checked; InputError names a bad key.
-cli::SweepSpec checked_sweep(json& j) {
+jobs::SweepSpec checked_sweep(json& j) {
   if (!j.is_object())
     throw InputError(
         "sweep: must be a JSON object (a sweep file: job, vary, mode, where, and name)");
@@ -32,7 +32,7 @@ cli::SweepSpec checked_sweep(json& j) {
     j["job"].erase("output");
     j["job"].erase("report");
   }
-  cli::SweepSpec spec = cli::sweep_spec_from_json(j);
+  jobs::SweepSpec spec = jobs::sweep_spec_from_json(j);
   const auto catalog = machines::profile_catalog();
   const std::string& machine = spec.job.settings.machine;
   if (std::none_of(catalog.begin(), catalog.end(),
@@ -41,7 +41,7 @@ cli::SweepSpec checked_sweep(json& j) {
                      ": not a machine of this server (GET /api/machines lists them)");
   }
   std::size_t kept = 0;
-  for (const cli::SweepPoint& p : cli::expand_points(spec)) {
+  for (const jobs::SweepPoint& p : jobs::expand_points(spec)) {
     kept += p.dropped.empty();
     if (p.name.find_first_of("/\\") != std::string::npos || p.name.front() == '.') {
       throw InputError("sweep.vary: a value makes the point name " + p.name.substr(0, 100) +
@@ -57,12 +57,12 @@ cli::SweepSpec checked_sweep(json& j) {
 }
 
 // Runs on a worker: the sweep into `d`, then its files and points as the gallery shows them.
-json sweep_into(const fs::path& d, std::int64_t id, const cli::SweepSpec& spec,
+json sweep_into(const fs::path& d, std::int64_t id, const jobs::SweepSpec& spec,
                 const json& source) {
-  cli::SweepOptions o;
+  jobs::SweepOptions o;
   o.dir = d.string();
   o.jobs = 1;  // one worker's share of the machine
-  const cli::SweepResult r = cli::run_sweep(spec, source, o, nullptr);
+  const jobs::SweepResult r = jobs::run_sweep(spec, source, o, nullptr);
   const std::string base = "/api/sweeps/" + std::to_string(id) + "/files/";
   json files = json::array();
   std::vector<fs::path> all;
@@ -145,7 +145,7 @@ Response Api::State::route_sweeps(const Request& r) {
     throw InputError("sweep.name: control characters are not allowed");
   }
   j.erase("name");
-  const cli::SweepSpec spec = checked_sweep(j);
+  const jobs::SweepSpec spec = checked_sweep(j);
   if (!options.run_jobs) return json_response(200, {{"checked", true}});
   const json job = {{"generator", "sweep"}, {"machine", spec.job.settings.machine}, {"sweep", j}};
   const std::int64_t id = store.insert(true, name, dump(job));

@@ -10,7 +10,7 @@
 
 #include "postprocess/inspect/check.h"
 #include "postprocess/inspect/gcode_file.h"
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 
 namespace strand::post {
 

@@ -11,7 +11,7 @@
 #include "postprocess/plan/planner.h"
 #include "slicer/layer_source.h"
 #include "slicer/motion.h"
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 #include "slicer/toolpath.h"
 
 namespace strand::post {

@@ -15,7 +15,7 @@ const nlohmann::json kSweep = {
               {"gap", {{"from", 0.9}, {"to", 1.8}, {"step", 0.1}}}}}};
 
 void run(benchmark::State& state, bool previews) {
-  using namespace strand::cli;
+  using namespace strand::jobs;
   const SweepSpec spec = sweep_spec_from_json(kSweep);
   const auto dir = std::filesystem::temp_directory_path() / "strand-bench-sweep";
   std::size_t points = 0;

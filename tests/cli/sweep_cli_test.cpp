@@ -45,7 +45,7 @@ TEST(SweepCli, ManifestRowsMatchTheFilesWritten) {
     }
     ASSERT_EQ(row.at("status"), "ok") << row.dump();
     const std::string gcode = slurp(dir + "/out/" + row.at("output").get<std::string>());
-    EXPECT_EQ(cli::fnv1a_hex(gcode), row.at("content_hash"));
+    EXPECT_EQ(jobs::fnv1a_hex(gcode), row.at("content_hash"));
     EXPECT_NE(gcode.find("param nozzle = " + row.at("parameters").at("nozzle").dump()), std::string::npos);
     EXPECT_TRUE(row.at("check").at("ok").get<bool>()) << row.dump();
     EXPECT_GT(row.at("ink_volume_ml").get<double>(), 0.0);
@@ -76,7 +76,7 @@ TEST(SweepCli, HundredPointsEachRowMatchesItsFile) {
   for (const auto& row : m.at("points")) {
     ASSERT_EQ(row.at("status"), "ok") << row.dump();
     listed.insert(row.at("output").get<std::string>());
-    EXPECT_EQ(cli::fnv1a_hex(slurp(dir + "/out/" + row.at("output").get<std::string>())), row.at("content_hash"));
+    EXPECT_EQ(jobs::fnv1a_hex(slurp(dir + "/out/" + row.at("output").get<std::string>())), row.at("content_hash"));
   }
   std::set<std::string> on_disk;
   for (const auto& e : fs::directory_iterator(dir + "/out")) {

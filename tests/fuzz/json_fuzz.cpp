@@ -20,11 +20,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   try {
-    cli::job_spec_from_json(j, "job");
+    jobs::job_spec_from_json(j, "job");
   } catch (const InputError&) {
   }
   try {
-    cli::expand_points(cli::sweep_spec_from_json(j));
+    jobs::expand_points(jobs::sweep_spec_from_json(j));
   } catch (const InputError&) {
   }
   try {

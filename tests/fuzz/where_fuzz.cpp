@@ -10,11 +10,11 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace strand;
   try {
-    const cli::Constraint c =
-        cli::parse_constraint(std::string(reinterpret_cast<const char*>(data), size), "where");
+    const jobs::Constraint c =
+        jobs::parse_constraint(std::string(reinterpret_cast<const char*>(data), size), "where");
     std::map<std::string, double> values;
     for (const auto& name : c.names) values[name] = 1.5;
-    cli::holds(c, values);
+    jobs::holds(c, values);
   } catch (const InputError&) {
   }
   return 0;

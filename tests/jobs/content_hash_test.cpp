@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-namespace strand::cli {
+namespace strand::jobs {
 namespace {
 
 TEST(ContentHash, MatchesPublishedFnv1a64Vectors) {
@@ -17,4 +17,4 @@ TEST(ContentHash, OneChangedByteChangesTheHash) {
 }
 
 }  // namespace
-}  // namespace strand::cli
+}  // namespace strand::jobs

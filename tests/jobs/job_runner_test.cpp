@@ -9,7 +9,7 @@
 #include "slicer/tolerances.h"
 #include "tests/support/cli_runner.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 namespace {
 
 const nlohmann::json kJob = {{"generator", "scaffold"},
@@ -67,4 +67,4 @@ TEST(JobRunner, ProblemsNameTheKeyPath) {
 }
 
 }  // namespace
-}  // namespace strand::cli
+}  // namespace strand::jobs

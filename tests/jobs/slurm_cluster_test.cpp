@@ -92,7 +92,7 @@ TEST_F(SlurmClusterTest, ACancelledTaskIsResumedAndMergesToTheSameBytes) {
   const std::string journal = dir_ + "/cluster/manifest-shard-2-of-4.journal.jsonl";
   bool caught = false;
   for (int i = 0; i < 3000 && !caught; ++i) {
-    caught = cli::journal_rows(journal).size() >= 1;
+    caught = jobs::journal_rows(journal).size() >= 1;
     if (!caught) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   ASSERT_TRUE(caught) << "task 2 journalled no point within 60 s" << cluster_->logs();
@@ -104,7 +104,7 @@ TEST_F(SlurmClusterTest, ACancelledTaskIsResumedAndMergesToTheSameBytes) {
   const std::string merge_log = slurp(dir_ + "/cluster/slurm/merge.log");
   EXPECT_NE(merge_log.find("1 of 4 shards did not finish: shard 2/4 (array task 2, log " + dir_ +
                            "/cluster/slurm/task-2.log"), std::string::npos) << merge_log;
-  const std::size_t kept = cli::journal_rows(journal).size();
+  const std::size_t kept = jobs::journal_rows(journal).size();
   ASSERT_GE(kept, 1u);
   ASSERT_LT(kept, 6u);
   const auto status = run_strand("sweep --status -o cluster", dir_);

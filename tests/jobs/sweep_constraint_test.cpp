@@ -5,7 +5,7 @@
 
 #include "slicer/input_error.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 namespace {
 
 TEST(SweepConstraint, ComparesParametersAndArithmetic) {
@@ -45,4 +45,4 @@ TEST(SweepConstraint, SyntaxErrorsNameTheKeyPath) {
 }
 
 }  // namespace
-}  // namespace strand::cli
+}  // namespace strand::jobs

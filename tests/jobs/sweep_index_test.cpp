@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-namespace strand::cli {
+namespace strand::jobs {
 namespace {
 
 const nlohmann::json kManifest = {
@@ -37,4 +37,4 @@ TEST(SweepIndex, CardsCarrySortKeysForEveryVariedParameterAndFigure) {
 }
 
 }  // namespace
-}  // namespace strand::cli
+}  // namespace strand::jobs

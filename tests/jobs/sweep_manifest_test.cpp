@@ -5,7 +5,7 @@
 
 #include "slicer/input_error.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 namespace {
 
 SweepSpec spec() {
@@ -55,4 +55,4 @@ TEST(SweepManifest, MergeRefusesMixedSweepsDuplicatesAndGaps) {
 }
 
 }  // namespace
-}  // namespace strand::cli
+}  // namespace strand::jobs

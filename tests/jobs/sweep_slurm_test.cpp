@@ -20,7 +20,7 @@ namespace strand::testing {
 namespace {
 
 namespace fs = std::filesystem;
-using cli::SlurmRequest;
+using jobs::SlurmRequest;
 
 // 12 points of a small scaffold (3 gaps x 4 nozzles), under a second to run.
 const char* const kSpec = R"({"job": {"generator": "scaffold", "params": {"size": "10x10", "height": 1}},
@@ -57,11 +57,11 @@ TEST(SweepSlurmScript, RunsTheSameProgramWithEachWordIntactAndNoInjection) {
   fs::create_directories(r.workdir);
   // The stand-in strand prints its working directory and each argument on its own line.
   write(r.strand, "#!/bin/sh\npwd\nfor a in \"$@\"; do printf '%s\\n' \"$a\"; done\n", true);
-  write(dir + "/task.sbatch", cli::array_script(r));
+  write(dir + "/task.sbatch", jobs::array_script(r));
   const auto out = run_in_shell("SLURM_ARRAY_TASK_ID=3 sh task.sbatch", dir);
   ASSERT_EQ(out.exit_code, 0) << out.err;
   EXPECT_EQ(lines(out.out), (std::vector<std::string>{r.workdir, "sweep", r.spec, "-o", r.dir, "--shard", "3/4", "-j", "1"}));
-  write(dir + "/merge.sbatch", cli::merge_script(r));
+  write(dir + "/merge.sbatch", jobs::merge_script(r));
   const auto merge = run_in_shell("SLURM_CPUS_PER_TASK=8 sh merge.sbatch", dir);
   EXPECT_EQ(lines(merge.out), (std::vector<std::string>{r.workdir, "sweep", "--merge", "-o", r.dir}));
   EXPECT_FALSE(exists(dir + "/pwned")) << "a file name ran as a command";
@@ -74,32 +74,32 @@ TEST(SweepSlurmScript, TasksUseTheirAllocatedCoresAndTheLimitsGoInSbatchLines) {
   r.time = "01:30:00";
   r.mem = "4G";
   r.previews = false;
-  const std::string s = cli::array_script(r);
+  const std::string s = jobs::array_script(r);
   EXPECT_EQ(s.rfind("#!/bin/sh\n", 0), 0u);
   for (const char* line : {"#SBATCH --partition=short\n", "#SBATCH --time=01:30:00\n", "#SBATCH --mem=4G\n"}) {
     EXPECT_NE(s.find(line), std::string::npos) << line << s;
   }
   EXPECT_NE(s.find("-j \"${SLURM_CPUS_PER_TASK:-1}\" --no-previews\n"), std::string::npos) << s;
-  EXPECT_NE(cli::merge_script(r).find("#SBATCH --partition=short\n"), std::string::npos);
+  EXPECT_NE(jobs::merge_script(r).find("#SBATCH --partition=short\n"), std::string::npos);
 }
 
 TEST(SweepSlurmScript, ArrayRangesCollapseRuns) {
-  EXPECT_EQ(cli::array_ranges({1, 2, 3, 4}), "1-4");
-  EXPECT_EQ(cli::array_ranges({2, 4}), "2,4");
-  EXPECT_EQ(cli::array_ranges({1, 2, 4, 5, 6, 9}), "1-2,4-6,9");
+  EXPECT_EQ(jobs::array_ranges({1, 2, 3, 4}), "1-4");
+  EXPECT_EQ(jobs::array_ranges({2, 4}), "2,4");
+  EXPECT_EQ(jobs::array_ranges({1, 2, 4, 5, 6, 9}), "1-2,4-6,9");
 }
 
 TEST(SweepSlurmScript, SbatchArgumentsStayOnTheCommandLineOneWordEach) {
   SlurmRequest r = request("/x");
   r.sbatch_args = {"--comment=$(touch pwned)", "--account=lab"};
-  const auto argv = cli::array_sbatch_argv(r, {2, 4});
+  const auto argv = jobs::array_sbatch_argv(r, {2, 4});
   EXPECT_EQ(argv, (std::vector<std::string>{"sbatch", "--parsable", "--array=2,4", "--output=/x/out dir/slurm/task-%a.log",
                                             "--open-mode=append", "--comment=$(touch pwned)", "--account=lab",
                                             "/x/out dir/slurm/sweep.sbatch"}));
-  EXPECT_EQ(cli::array_script(r).find("--comment"), std::string::npos);
-  EXPECT_EQ(cli::merge_sbatch_argv(r, "77")[2], "--dependency=afterany:77");
+  EXPECT_EQ(jobs::array_script(r).find("--comment"), std::string::npos);
+  EXPECT_EQ(jobs::merge_sbatch_argv(r, "77")[2], "--dependency=afterany:77");
   // Printed for a user to paste: the shell gives back the same words.
-  const auto echoed = run_in_shell("printf '%s\\n' " + cli::command_line(argv), fresh_dir("slurm-words"));
+  const auto echoed = run_in_shell("printf '%s\\n' " + jobs::command_line(argv), fresh_dir("slurm-words"));
   EXPECT_EQ(lines(echoed.out), argv);
 }
 
@@ -122,7 +122,7 @@ TEST(SweepSlurmScript, BadOptionsAreRefusedBeforeAnythingIsWritten) {
     SlurmRequest r = request("/x");
     c.edit(r);
     try {
-      cli::check_slurm_request(r, 12);
+      jobs::check_slurm_request(r, 12);
       ADD_FAILURE() << "accepted: " << c.mention;
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(c.mention), std::string::npos) << e.what();
@@ -132,17 +132,17 @@ TEST(SweepSlurmScript, BadOptionsAreRefusedBeforeAnythingIsWritten) {
   ok.time = "2-00:00:00";
   ok.mem = "500M";
   ok.sbatch_args = {"--account=lab", "--qos=long"};
-  EXPECT_NO_THROW(cli::check_slurm_request(ok, 12));
+  EXPECT_NO_THROW(jobs::check_slurm_request(ok, 12));
 }
 
 TEST(SweepSlurmProcess, CapturesBothStreamsAndTheExitCode) {
-  const auto r = cli::run_process({"sh", "-c", "echo out; echo err >&2; exit 3"});
+  const auto r = jobs::run_process({"sh", "-c", "echo out; echo err >&2; exit 3"});
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_EQ(r.out, "out\n");
   EXPECT_EQ(r.err, "err\n");
-  EXPECT_EQ(cli::run_process({"strand-no-such-program"}).exit_code, 127);
-  EXPECT_EQ(cli::find_on_path("sh").empty(), false);
-  EXPECT_EQ(cli::find_on_path("strand-no-such-program"), "");
+  EXPECT_EQ(jobs::run_process({"strand-no-such-program"}).exit_code, 127);
+  EXPECT_EQ(jobs::find_on_path("sh").empty(), false);
+  EXPECT_EQ(jobs::find_on_path("strand-no-such-program"), "");
 }
 
 // A directory with the sweep file and stand-in sbatch/scancel that log their arguments
@@ -250,7 +250,7 @@ TEST(SweepStatus, ReadsShardsFromManifestsAndJournals) {
   write(dir + "/s.json", kSpec);
   ASSERT_EQ(run_strand("sweep s.json -o out --no-previews --shard 1/3", dir).exit_code, 0);
   {  // shard 2 stopped after one point: a journal with one row and no run holding it
-    cli::SweepJournal journal(dir + "/out/manifest-shard-2-of-3.journal.jsonl", cli::Shard{2, 3}, 12);
+    jobs::SweepJournal journal(dir + "/out/manifest-shard-2-of-3.journal.jsonl", jobs::Shard{2, 3}, 12);
     journal.append({{"index", 1}, {"name", "scaffold_gap-1.2_nozzle-0.5"}, {"status", "ok"}});
   }
   auto r = run_strand("sweep --status -o out", dir);
@@ -261,7 +261,7 @@ TEST(SweepStatus, ReadsShardsFromManifestsAndJournals) {
                               "shard 2/3: 4 point(s), 1 done, 0 running, 0 failed (stopped)",
                               "shard 3/3: 4 point(s), 0 done, 0 running, 0 failed (not started)"}));
   // While a run holds shard 2, its points not done are running, and a second run is refused.
-  cli::SweepJournal held(dir + "/out/manifest-shard-2-of-3.journal.jsonl", cli::Shard{2, 3}, 12);
+  jobs::SweepJournal held(dir + "/out/manifest-shard-2-of-3.journal.jsonl", jobs::Shard{2, 3}, 12);
   r = run_strand("sweep --status -o out", dir);
   EXPECT_NE(r.out.find("shard 2/3: 4 point(s), 1 done, 3 running, 0 failed (running)"), std::string::npos) << r.out;
   expect_input_error(run_strand("sweep s.json -o out --no-previews --shard 2/3", dir),

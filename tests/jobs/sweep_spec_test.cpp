@@ -5,7 +5,7 @@
 
 #include "slicer/input_error.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 namespace {
 
 nlohmann::json sweep(nlohmann::json vary, nlohmann::json extra = nlohmann::json::object()) {
@@ -119,4 +119,4 @@ TEST(SweepShard, ShardsPartitionThePoints) {
 }
 
 }  // namespace
-}  // namespace strand::cli
+}  // namespace strand::jobs

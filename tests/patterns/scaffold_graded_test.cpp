@@ -181,10 +181,10 @@ post::Produced run_scheduled(const nlohmann::json& schedule) {
   const nlohmann::json job = {{"generator", "scaffold"},
                               {"params", {{"nozzle", 0.6}, {"gap", 1.0}, {"size", "12x12"}, {"layers", 6}}},
                               {"schedule", schedule}};
-  const cli::JobSpec spec = cli::job_spec_from_json(job, "job");
+  const jobs::JobSpec spec = jobs::job_spec_from_json(job, "job");
   auto settings = spec.settings;
   settings.keep_program = true;
-  return cli::produce_job(*spec.generator, spec.params, settings);
+  return jobs::produce_job(*spec.generator, spec.params, settings);
 }
 
 TEST(ScaffoldSchedule, LayerRangesTakeTheirSpeedGapAngleAndFlow) {

@@ -98,14 +98,14 @@ TEST(MeasureLines, PhotoHeaderIsCheckedBeforeDecoding) {
 TEST(InkCalibrate, FitRecoversThePowerLawFromMeasuredPhotos) {
   const auto report = matrix_report({{"nozzle", 0.6}});
   const auto m = post::measure::measure_lines(synthetic_photo(report["derived"], law_width), report, "photo");
-  const nlohmann::json profile = cli::ink_profile("test-ink", {m.json}, {"m.json"});
+  const nlohmann::json profile = jobs::ink_profile("test-ink", {m.json}, {"m.json"});
   const auto& w = profile["width_model"];
   // Truth: p = 0.6, q = -0.4, and a = 0.62 * 300^0.4. The factor a alone is ill-conditioned
   // (a 1 % error in q moves it by 6 % at these speeds), so the law is compared where it is
   // used: the widths it predicts over the measured speeds and flows.
   EXPECT_NEAR(w["p"].get<double>(), 0.6, 0.05 * 0.6);
   EXPECT_NEAR(w["q"].get<double>(), -0.4, 0.05 * 0.4);
-  const cli::WidthModel fit{w["a"], w["p"], w["q"]};
+  const jobs::WidthModel fit{w["a"], w["p"], w["q"]};
   for (const auto& l : report["derived"]["lines"]) {
     const double truth = law_width(l);
     EXPECT_NEAR(fit.width_mm(l["flow"], l["speed_mm_min"]), truth, 0.05 * truth) << l.dump();
@@ -123,7 +123,7 @@ TEST(InkCalibrate, OneSpeedCannotBeFitted) {
     m["lines"].push_back({{"flow", f}, {"speed_mm_min", 300}, {"width_mm", 0.6 * f}, {"coverage", 1.0}});
   }
   try {
-    cli::fit_width_model({m});
+    jobs::fit_width_model({m});
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("2 flows and 2 speeds"), std::string::npos) << e.what();

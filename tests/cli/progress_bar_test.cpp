@@ -1,5 +1,5 @@
 // Progress output: a redrawn bar on a terminal, plain lines otherwise; ETA clock text.
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 
 #include <gtest/gtest.h>
 

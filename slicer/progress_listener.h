@@ -1,5 +1,5 @@
 // Progress of long work, told to whoever listens: the CLI draws a bar or prints a line per
-// phase on stderr (cli/progress.h); a web front end could send the same events. The core
+// phase on stderr (cli/progress_bar.h); a web front end could send the same events. The core
 // calls it between pieces of work and never prints; a null pointer means nobody listens.
 #pragma once
 

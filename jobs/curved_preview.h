@@ -11,7 +11,7 @@
 #include "postprocess/preview/preview_scene.h"
 #include "slicer/mesh_substrate.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 // The substrate is drawn when the part knows its cylinder (radius and length > 0), as
 // facets within `tolerance_mm` of the surface.
@@ -27,4 +27,4 @@ post::PreviewScene mesh_scene(const post::CurvedPart& part, const slicer::MeshSu
 post::PreviewScene curved_file_scene(const std::string& file, std::string_view text,
                                      double tolerance_mm);
 
-}  // namespace strand::cli
+}  // namespace strand::jobs

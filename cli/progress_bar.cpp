@@ -1,5 +1,5 @@
 // Progress bar and plain progress lines.
-#include "cli/progress.h"
+#include "cli/progress_bar.h"
 
 #include <sys/ioctl.h>
 #include <unistd.h>

@@ -11,7 +11,7 @@
 #include <ostream>
 #include <string>
 
-#include "slicer/progress.h"
+#include "slicer/progress_listener.h"
 
 namespace strand::cli {
 

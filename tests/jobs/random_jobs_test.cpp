@@ -15,7 +15,7 @@
 #include "slicer/input_error.h"
 #include "tests/support/sample_jobs.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 namespace {
 
 constexpr int kJobsPerGenerator = 500;
@@ -110,4 +110,4 @@ INSTANTIATE_TEST_SUITE_P(Generators, RandomJobs,
                          });
 
 }  // namespace
-}  // namespace strand::cli
+}  // namespace strand::jobs

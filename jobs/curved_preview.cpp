@@ -1,13 +1,13 @@
 // Paths grouped by layer, feature and travel; the cylinder (or the mesh) turned into the
 // viewing frame.
-#include "cli/curved_preview.h"
+#include "jobs/curved_preview.h"
 
 #include <functional>
 
 #include "postprocess/inspect/mesh_pose_check.h"
 #include "slicer/cylinder_surface.h"
 
-namespace strand::cli {
+namespace strand::jobs {
 
 namespace {
 
@@ -73,4 +73,4 @@ post::PreviewScene curved_file_scene(const std::string& file, std::string_view t
   return curved_scene(part, tolerance_mm);
 }
 
-}  // namespace strand::cli
+}  // namespace strand::jobs
