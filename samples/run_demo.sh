@@ -33,8 +33,11 @@ for job in "$samples"/*.json; do
     continue
   fi
   "$strand" job "$job" -o "$name.gcode" --report "$name.json" | tee "$name-summary.txt"
-  # Check the specimen against its machine (crossings, strands, volume) and draw layer 1.
-  "$strand" check "$name.gcode" --machine "$machine" --svg-layer 1 "$name-layer1.svg" > "$name-check.txt"
+  # Check the specimen against its machine (crossings, strands, volume) and draw layer 1 (the
+  # one layer of a single-layer print test: layer 0).
+  layer=1
+  if [[ "$(grep -c '^;LAYER_CHANGE' "$name.gcode")" -lt 2 ]]; then layer=0; fi
+  "$strand" check "$name.gcode" --machine "$machine" --svg-layer "$layer" "$name-layer$layer.svg" > "$name-check.txt"
   tail -n 1 "$name-check.txt"
   for ext in png svg html glb; do "$strand" preview "$name.gcode" -o "$name-preview.$ext"; done
 done
