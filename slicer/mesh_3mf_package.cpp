@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "slicer/input_error.h"
+#include "slicer/mesh_3mf_zip.h"
 
 namespace strand::slicer {
 
@@ -17,12 +18,6 @@ namespace {
   throw InputError("mesh = " + path + ": " + what);
 }
 
-struct ZipDiscard {
-  void operator()(zip_t* z) const { zip_discard(z); }
-};
-struct ZipFileClose {
-  void operator()(zip_file_t* f) const { zip_fclose(f); }
-};
 
 struct ZipSourceFree {
   void operator()(zip_source_t* s) const { zip_source_free(s); }
@@ -93,16 +88,7 @@ std::string with_prefixes_declared(const std::string& bytes,
                                    const std::string& path) {
   std::map<zip_uint64_t, std::string> texts;
   {
-    zip_error_t error;
-    zip_error_init(&error);
-    zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
-    std::unique_ptr<zip_t, ZipDiscard> zip(source ? zip_open_from_source(source, ZIP_RDONLY, &error)
-                                                  : nullptr);
-    zip_error_fini(&error);
-    if (!zip) {
-      if (source) zip_source_free(source);
-      refuse(path, "cannot rewrite the archive");
-    }
+    const auto zip = open_zip_in_memory(bytes, path, "cannot rewrite the archive");
     for (const PrefixDeclarations& p : parts) {
       const auto index = static_cast<zip_uint64_t>(p.index);
       texts[index] = declare_prefixes(inflate_entry(zip.get(), index, p.size, path), p.prefixes,
@@ -110,6 +96,22 @@ std::string with_prefixes_declared(const std::string& bytes,
     }
   }
   return with_entries_replaced(bytes, texts, path);
+}
+
+std::unique_ptr<zip_t, ZipDiscard> open_zip_in_memory(const std::string& bytes,
+                                                       const std::string& path,
+                                                       const std::string& why) {
+  zip_error_t error;
+  zip_error_init(&error);
+  zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
+  std::unique_ptr<zip_t, ZipDiscard> zip(source ? zip_open_from_source(source, ZIP_RDONLY, &error)
+                                                : nullptr);
+  zip_error_fini(&error);
+  if (!zip) {
+    if (source) zip_source_free(source);
+    refuse(path, why);
+  }
+  return zip;
 }
 
 }  // namespace strand::slicer

@@ -23,6 +23,7 @@
 #include "slicer/mesh_3mf.h"
 #include "slicer/mesh_3mf_package.h"
 #include "slicer/mesh_3mf_xml.h"
+#include "slicer/mesh_3mf_zip.h"
 #include "slicer/mesh_io.h"
 
 namespace strand::slicer {
@@ -336,27 +337,12 @@ void check_component_graph(const PackageCounts& c, const std::string& path) {
   }
 }
 
-struct ZipDiscard {
-  void operator()(zip_t* z) const { zip_discard(z); }
-};
-struct ZipFileClose {
-  void operator()(zip_file_t* f) const { zip_fclose(f); }
-};
 }  // namespace
 
 // The archive as libzip (lib3mf's zip library) lists it: stated sizes summed and bounded,
 // then the parts lib3mf reads as XML inflated (bounded by their stated sizes) and tokenized.
 void screen_3mf_package(std::string& bytes, const std::string& path) {
-  zip_error_t error;
-  zip_error_init(&error);
-  zip_source_t* source = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &error);
-  std::unique_ptr<zip_t, ZipDiscard> zip(source ? zip_open_from_source(source, ZIP_RDONLY, &error)
-                                                : nullptr);
-  zip_error_fini(&error);
-  if (!zip) {
-    if (source) zip_source_free(source);
-    refuse(path, "not a 3MF file (a 3MF is a zip archive)");
-  }
+  auto zip = open_zip_in_memory(bytes, path, "not a 3MF file (a 3MF is a zip archive)");
   const zip_int64_t count = zip_get_num_entries(zip.get(), 0);
   std::vector<std::string> names;
   std::vector<std::uint64_t> sizes;
