@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "jobs/curved_job.h"
+#include "jobs/ink_profile.h"
 #include "machines/gcode_format.h"
 #include "machines/profile.h"
 #include "postprocess/inspect/check.h"
@@ -18,7 +19,7 @@ namespace strand::jobs {
 namespace {
 
 const char* const kJobKeys[] = {"generator", "machine", "params", "output", "report",
-                                "arc-tolerance", "viewer-e", "substrate", "description", "schedule"};
+                                "arc-tolerance", "viewer-e", "substrate", "description", "schedule", "material"};
 
 bool is_job_key(const std::string& k) {
   for (const char* known : kJobKeys) {
@@ -85,7 +86,7 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
     if (!is_job_key(k)) {
       problems.push_back(where + "." + k +
                          ": unknown key (generator, machine, params, output, report, "
-                         "arc-tolerance, viewer-e, substrate, description, schedule)");
+                         "arc-tolerance, viewer-e, substrate, description, schedule, material)");
     }
   }
   if (!problems.empty()) throw InputError(problems);
@@ -119,6 +120,11 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
       throw InputError(where + ".schedule: a scheduled scaffold is flat (no substrate)");
     }
     s.settings.schedule = j.at("schedule");
+  }
+  // An ink profile (strand calibrate) sets speed and layer height unless params give them.
+  if (j.contains("material")) {
+    const std::string material = slicer::get_text(j, "material", where, "");
+    s.settings.material = apply_ink_profile(load_ink_profile(material), material, s.generator->table(), s.params);
   }
   return s;
 }
@@ -160,6 +166,9 @@ Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json&
   slicer::progress_phase(s.progress, "generating");
   p.layers = generator.layers(values);
   p.options = post::plan_options_from(p.layers->record, s.arc_tolerance_mm);
+  if (s.material.is_object() && s.material.contains("flow") && s.material.at("flow").is_number()) {
+    p.options.flow = s.material.at("flow").get<double>();
+  }
   return p;
 }
 

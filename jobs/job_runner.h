@@ -39,7 +39,8 @@ struct JobSettings {
 };
 
 // A job file's content, checked: {"generator", "machine", "params", "output", "report",
-// "arc-tolerance", "viewer-e", "substrate", "description", "schedule"}.
+// "arc-tolerance", "viewer-e", "substrate", "description", "schedule", "material"} ("material":
+// an ink profile's name or .json path, applied as --material is).
 struct JobSpec {
   const patterns::GeneratorSpec* generator = nullptr;
   nlohmann::json params = nlohmann::json::object();  // as given, keys = CLI long flags

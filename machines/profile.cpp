@@ -79,6 +79,7 @@ Deposition read_deposition(const nlohmann::json& d, const std::string& origin,
   out.message = d.value("message", std::string());
   out.on_gcode = lines(d, "on_gcode");
   out.off_gcode = lines(d, "off_gcode");
+  out.pressure_command = lines(d, "pressure_command");
   out.relative_e = d.value("relative_e", false);
   out.prime_e = d.value("prime_e", 0.0);
   out.retract_e = d.value("retract_e", 0.0);
@@ -92,6 +93,16 @@ Deposition read_deposition(const nlohmann::json& d, const std::string& origin,
   if (out.model == DepositionModel::EVolumetric && !d.contains("mm3_per_e") &&
       !d.contains("filament_diameter_mm")) {
     problems.push_back(origin + ": deposition.mm3_per_e: missing (e-volumetric needs mm3_per_e or filament_diameter_mm)");
+  }
+  if (!out.pressure_command.empty() && out.model != DepositionModel::Valve &&
+      out.model != DepositionModel::ManualValve) {
+    problems.push_back(origin + ": deposition.pressure_command: only for valve or manual-valve (E-driven machines set flow by E)");
+  }
+  for (const std::string& line : out.pressure_command) {
+    if (line.find("{flow}") == std::string::npos) {
+      problems.push_back(origin + ": deposition.pressure_command: \"" + line + "\" lacks {flow} (the value to set)");
+      break;
+    }
   }
   if (out.model == DepositionModel::Valve && (out.on_gcode.empty() || out.off_gcode.empty())) {
     problems.push_back(origin + ": deposition.on_gcode/off_gcode: missing (required for valve)");

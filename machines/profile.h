@@ -49,6 +49,9 @@ struct Deposition {
   std::string message;            // manual valve: LCD message (M117)
   std::vector<std::string> on_gcode;   // valve: commands that open it
   std::vector<std::string> off_gcode;  // valve: commands that close it
+  // valve, manual valve: commands that set the pressure, {flow} replaced by the value of a
+  // line-width matrix row or an ink profile (machines/flow_change.h); empty: ask by hand.
+  std::vector<std::string> pressure_command;
   double mm3_per_e = 1.0;         // e-volumetric: ink volume pushed by one E unit
   bool relative_e = false;        // e-volumetric: M83 when true, M82 otherwise
   double prime_e = 0.0;           // e-volumetric: E pushed once at start

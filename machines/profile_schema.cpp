@@ -55,6 +55,7 @@ const std::vector<Field>& schema() {
           {"message", T::String},
           {"on_gcode", T::StringList},
           {"off_gcode", T::StringList},
+          {"pressure_command", T::StringList},
           {"mm3_per_e", T::Number, false, 1e-6, 1e6},
           {"filament_diameter_mm", T::Number, false, 0.1, 100.0},
           {"relative_e", T::Bool},

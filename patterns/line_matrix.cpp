@@ -1,6 +1,7 @@
 // Line-width matrix: the table, the checked parameters and the layout. Lines run along x;
-// columns hold one speed each, rows one flow each, printed as a serpentine of separate
-// strokes (a travel between lines: each line's speed and bead differ), then the square marks
+// columns hold one speed each, rows one flow each, printed row by row as a serpentine of
+// separate strokes (a travel between lines: each line's speed and bead differ), then the
+// square marks
 // (patterns/ink_test_marks.h).
 #include "patterns/line_matrix.h"
 
@@ -98,19 +99,23 @@ std::unique_ptr<slicer::LayerSource> line_matrix_layers(const LineMatrixParams& 
 
   slicer::Layer layer{h, h, {}};
   nlohmann::json lines = nlohmann::json::array();
-  nlohmann::json speeds = nlohmann::json::array();
-  // Column by column, rows alternately up and down, each line from the end nearest the last.
-  bool leftward = false;
-  for (std::size_t c = 0; c < columns; ++c) {
-    for (std::size_t k = 0; k < rows; ++k) {
-      const std::size_t r = c % 2 == 0 ? k : rows - 1 - k;
+  std::vector<double> speeds, flows;
+  std::vector<std::string> labels;
+  // Row by row (one flow each, so a pneumatic machine changes its pressure once per row),
+  // columns alternately rightward and leftward, each line from the end nearest the last.
+  for (std::size_t r = 0; r < rows; ++r) {
+    const bool leftward = r % 2 == 1;
+    for (std::size_t k = 0; k < columns; ++k) {
+      const std::size_t c = leftward ? columns - 1 - k : k;
       const double y = y0 + r * p.spacing_mm;
       Vec2 a(x0 + c * pitch_x, y), b(a.x() + p.length_mm, y);
       if (leftward) std::swap(a, b);
-      leftward = !leftward;
       const double w = width_for_flow(p.nozzle_mm, h, p.flows[r]);
       layer.strokes.push_back(straight_bead(a, b, w, h));
       speeds.push_back(p.speeds_mm_per_min[c]);
+      flows.push_back(p.flows[r]);
+      labels.push_back("line " + std::to_string(lines.size()) + ": speed " + slicer::short_number(p.speeds_mm_per_min[c]) +
+                       " mm/min, flow " + slicer::short_number(p.flows[r]));
       lines.push_back({{"index", lines.size()},
                        {"speed_mm_min", p.speeds_mm_per_min[c]},
                        {"flow", p.flows[r]},
@@ -119,19 +124,29 @@ std::unique_ptr<slicer::LayerSource> line_matrix_layers(const LineMatrixParams& 
                        {"width_mm", w}});
     }
   }
-  // Marks outside the lines' box, one spacing plus half a mark beyond it.
+  // Marks outside the lines' box, one spacing plus half a mark beyond it, at the last row's
+  // flow (no change of pressure for them).
   const double mx = -x0 + p.spacing_mm + p.fiducial_mm / 2;
   const double my = -y0 + p.spacing_mm + p.fiducial_mm / 2;
   const nlohmann::json fiducials = add_corner_marks(layer, mx, my, p.fiducial_mm, p.nozzle_mm, h);
-  for (std::size_t k = 0; k < fiducials.size(); ++k) speeds.push_back(p.speed_mm_per_min);
+  for (std::size_t k = 0; k < fiducials.size(); ++k) {
+    speeds.push_back(p.speed_mm_per_min);
+    flows.push_back(p.flows.back());
+    labels.push_back("fiducial mark " + std::to_string(k));
+  }
 
   slicer::Toolpath t;
   t.generator = "line-matrix";
-  nlohmann::json all_speeds = nlohmann::json::array();
+  nlohmann::json all_speeds = nlohmann::json::array(), all_flows = nlohmann::json::array(),
+                 all_labels = nlohmann::json::array();
   for (int k = 0; k < p.layers; ++k) {
     layer.z_mm = (k + 1) * h;
     t.layers.push_back(layer);
-    for (const auto& v : speeds) all_speeds.push_back(v);
+    for (std::size_t i = 0; i < speeds.size(); ++i) {
+      all_speeds.push_back(speeds[i]);
+      all_flows.push_back(flows[i]);
+      all_labels.push_back(labels[i]);
+    }
   }
   t.derived = {{"test", "lines"},
                {"nozzle_mm", p.nozzle_mm},
@@ -141,7 +156,9 @@ std::unique_ptr<slicer::LayerSource> line_matrix_layers(const LineMatrixParams& 
                {"lines", lines},
                {"fiducials", fiducials},
                {"spacing_mm", p.spacing_mm},
-               {"stroke_speeds_mm_per_min", all_speeds}};
+               {"stroke_speeds_mm_per_min", all_speeds},
+               {"stroke_flows", all_flows},
+               {"stroke_labels", all_labels}};
   return std::make_unique<slicer::ToolpathLayers>(std::move(t));
 }
 

@@ -27,11 +27,12 @@ struct LineMatrixParams {
   int layers = 1;
 };
 
-// One layer centred on (0, 0): columns of speeds along x, rows of flows along y, then the
-// four marks. The record's derived keys: "lines" (index, speed_mm_min, flow, start_mm,
-// end_mm, width_mm), "fiducials" (x_mm, y_mm, size_mm, in the part frame: the photo is
-// measured against these), "nozzle_mm" and "stroke_speeds_mm_per_min" (the planner's speed
-// per stroke, in print order).
+// One layer centred on (0, 0): columns of speeds along x, rows of flows along y, printed row
+// by row, then the four marks. The record's derived keys: "lines" (index = print order,
+// speed_mm_min, flow, start_mm, end_mm, width_mm), "fiducials" (x_mm, y_mm, size_mm, in the
+// part frame: the photo is measured against these), "nozzle_mm" and, per stroke in print
+// order, the planner's "stroke_speeds_mm_per_min", "stroke_flows" (a pneumatic machine sets
+// its pressure where the flow changes) and "stroke_labels" (a G-code comment each).
 std::unique_ptr<slicer::LayerSource> line_matrix_layers(const LineMatrixParams& p);
 
 const slicer::ParamTable& line_matrix_table();

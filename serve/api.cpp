@@ -227,6 +227,10 @@ Response Api::State::run(const Request& r, bool save) {
   // Paths are the server's to choose: a job file's own output and report are ignored.
   j.erase("output");
   j.erase("report");
+  // So are the files read: an ink profile by name (its materials/NAME.json), never by path.
+  if (j.contains("material") && j.at("material").is_string() && j.at("material").get<std::string>().ends_with(".json")) {
+    throw InputError("job.material: give the ink profile's name (materials/NAME.json on the server), not a path");
+  }
   const jobs::JobSpec spec = jobs::job_spec_from_json(j, "job");
   const auto catalog = machines::profile_catalog();
   if (std::none_of(catalog.begin(), catalog.end(), [&](const auto& p) { return p.name == spec.settings.machine; })) {

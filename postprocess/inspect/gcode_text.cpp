@@ -12,11 +12,12 @@ using slicer::Feature;
 
 namespace {
 
-// M-codes whose argument is free text ("M117 Open the valve"), not address words.
+// M-codes whose argument is free text ("M117 Open the valve", Marlin's "M0 Set flow 1.25",
+// RepRapFirmware's M291 P"message" S2), not address words.
 bool takes_text(const Words& w) {
   if (w.count != 1 || w.letter[0] != 'M') return false;
   const double m = w.value[0];
-  return m == 117 || m == 118 || m == 23 || m == 28 || m == 30 || m == 32;
+  return m == 117 || m == 118 || m == 23 || m == 28 || m == 30 || m == 32 || m == 0 || m == 1 || m == 291;
 }
 
 }  // namespace

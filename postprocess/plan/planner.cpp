@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "machines/flow_change.h"
 #include "postprocess/plan/arc_segmentation.h"
 #include "postprocess/plan/placement.h"
 #include "postprocess/plan/valve_lag.h"
@@ -51,6 +52,7 @@ class Planner {
     {
       for (const auto& s : layer.strokes) {
         n += 3;  // lift, cross, lower
+        if (!o_.stroke_flows.empty() || !o_.stroke_labels.empty() || o_.flow) n += 2;  // lift, text
         Vec2 at = s.start_mm;
         for (const auto& seg : s.segments) {
           if (seg.kind == slicer::SegmentKind::Line || m_.arcs) {
@@ -70,8 +72,18 @@ class Planner {
 
   void add_stroke(const slicer::Stroke& s, double z) {
     const Vec3 start(s.start_mm.x() + offset_.x(), s.start_mm.y() + offset_.y(), z);
+    const bool own_flow = stroke_ < o_.stroke_flows.size();
+    if (own_flow) {
+      set_flow(o_.stroke_flows[stroke_], "");
+    } else if (o_.flow) {
+      set_flow(*o_.flow, "this ink");
+    }
+    if (stroke_ < o_.stroke_labels.size() && !o_.stroke_labels[stroke_].empty()) {
+      slicer::push_raw(p_, machines::comment_line(m_, o_.stroke_labels[stroke_]), layer_);
+    }
     travel_to(start);
-    const double area = slicer::bead_area_mm2(s.width_mm, s.height_mm);
+    double area = slicer::bead_area_mm2(s.width_mm, s.height_mm);
+    if (o_.flow && !own_flow && m_.deposition.model == machines::DepositionModel::EVolumetric) area *= *o_.flow;
     const double speed = stroke_ < o_.stroke_speeds_mm_per_min.size() ? o_.stroke_speeds_mm_per_min[stroke_]
                                                                        : o_.speed_mm_per_min;
     ++stroke_;
@@ -98,6 +110,17 @@ class Planner {
       at = end;
     }
     pos_ = Vec3(at.x(), at.y(), z);
+  }
+
+  // A new flow on a pneumatic machine: lifted clear of the bead (a pause may follow), the
+  // machine's commands. Nothing when the flow is unchanged or set by E.
+  void set_flow(double flow, const std::string& what) {
+    if (!machines::flow_is_pressure(m_) || (flow_ && *flow_ == flow)) return;
+    flow_ = flow;
+    if (started_ && m_.travel_lift_mm > 0) {
+      push_travel(Vec3(pos_.x(), pos_.y(), pos_.z() + m_.travel_lift_mm), m_.limits.z_feed_mm_per_min);
+    }
+    slicer::push_raw(p_, machines::flow_change_gcode(m_, flow, what), layer_);
   }
 
   void deposit(const Vec2& from, const Vec2& to, double z, double feed, double area, double width,
@@ -193,6 +216,7 @@ class Planner {
   double cached_speed_ = 0.0;
   double cached_feed_ = 0.0;
   std::size_t stroke_ = 0;  // strokes planned so far, for stroke_speeds_mm_per_min
+  std::optional<double> flow_;  // the flow last set on a pneumatic machine
 };
 
 }  // namespace
@@ -208,6 +232,12 @@ PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm
   }
   if (t.derived.is_object() && t.derived.contains("stroke_speeds_mm_per_min")) {
     o.stroke_speeds_mm_per_min = t.derived.at("stroke_speeds_mm_per_min").get<std::vector<double>>();
+  }
+  if (t.derived.is_object() && t.derived.contains("stroke_flows")) {
+    o.stroke_flows = t.derived.at("stroke_flows").get<std::vector<double>>();
+  }
+  if (t.derived.is_object() && t.derived.contains("stroke_labels")) {
+    o.stroke_labels = t.derived.at("stroke_labels").get<std::vector<std::string>>();
   }
   return o;
 }

@@ -11,6 +11,8 @@
 
 #include <map>
 #include <memory>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "machines/profile.h"
@@ -26,10 +28,18 @@ struct PlanOptions {
   // Base speed of each stroke in print order, replacing speed_mm_per_min (the line-width
   // matrix prints every line at its own speed); strokes past the end use speed_mm_per_min.
   std::vector<double> stroke_speeds_mm_per_min;
+  // Flow of each stroke in print order (the matrix's rows): on pneumatic machines a change
+  // sets the pressure (machines/flow_change.h); E-driven machines take it from the bead.
+  std::vector<double> stroke_flows;
+  // A comment written before each stroke in print order ("line 4: 300 mm/min, flow 1.25").
+  std::vector<std::string> stroke_labels;
+  // The ink profile's flow (--material): E-driven machines push this times the volume,
+  // pneumatic ones set it once before the first stroke. Strokes with stroke_flows keep theirs.
+  std::optional<double> flow;
 };
 
 // Reads "speed" and "<feature>-speed-factor" from the toolpath's parameters and
-// "stroke_speeds_mm_per_min" from its derived values.
+// "stroke_speeds_mm_per_min", "stroke_flows" and "stroke_labels" from its derived values.
 PlanOptions plan_options_from(const slicer::Toolpath& t, double arc_tolerance_mm);
 
 // Plans the toolpath for the machine and checks the result fits its build volume

@@ -73,6 +73,41 @@ TEST(InkCli, PrintPhotographMeasureCalibrateThenPrintWithTheMaterial) {
   EXPECT_EQ(read_json(dir + "/s2.json")["parameters"]["speed"], 123);
 }
 
+// A job file names its ink as --material does; the flow the profile holds reaches the machine:
+// E times the flow on a screw extruder, a pause to set it on the manual valve.
+TEST(InkCli, AJobFilesMaterialSetsSpeedLayerHeightAndFlow) {
+  const auto dir = fresh_dir("ink-job");
+  std::filesystem::create_directories(dir + "/materials");
+  std::ofstream(dir + "/materials/paste.json")
+      << R"({"name": "paste", "nozzle_mm": 0.6, "measurements": ["m.json"],
+             "print": {"speed_mm_min": 320, "flow": 1.2, "layer_height_mm": 0.5}})";
+  const std::string params = R"("params": {"nozzle": 0.6, "gap": 1, "size": "10x10", "layers": 2})";
+  std::ofstream(dir + "/ink.json") << R"({"generator": "scaffold", "machine": "deltawasp-2040-clay-ldm", "material": "paste", )"
+                                   << params << "}";
+  std::ofstream(dir + "/plain.json") << R"({"generator": "scaffold", "machine": "deltawasp-2040-clay-ldm",
+      "params": {"nozzle": 0.6, "gap": 1, "size": "10x10", "layers": 2, "speed": 320, "layer-height": 0.5}})";
+  auto r = run_strand("job ink.json --report ink-report.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto report = read_json(dir + "/ink-report.json");
+  EXPECT_EQ(report["parameters"]["speed"], 320);
+  EXPECT_EQ(report["parameters"]["layer-height"], 0.5);
+  EXPECT_EQ(report["material"]["flow"], 1.2);
+  ASSERT_EQ(run_strand("job plain.json --report plain-report.json", dir).exit_code, 0);
+  const double ink_mm3 = report["totals"]["ink_volume_mm3"].get<double>();
+  const double plain_mm3 = read_json(dir + "/plain-report.json")["totals"]["ink_volume_mm3"].get<double>();
+  EXPECT_NEAR(ink_mm3, 1.2 * plain_mm3, 0.002);
+
+  std::ofstream(dir + "/manual.json") << R"({"generator": "scaffold", "material": "paste", )" << params << "}";
+  ASSERT_EQ(run_strand("job manual.json -o manual.gcode", dir).exit_code, 0);
+  const std::string gcode = slurp(dir + "/manual.gcode");
+  EXPECT_NE(gcode.find("M117 Set flow 1.2 for this ink, then resume\nM0 "), std::string::npos);
+  EXPECT_EQ(run_strand("check manual.gcode", dir).exit_code, 0);
+
+  std::ofstream(dir + "/missing.json") << R"({"generator": "scaffold", "material": "nothing", )" << params << "}";
+  expect_input_error(run_strand("job missing.json -o missing.gcode", dir), "material = nothing");
+  EXPECT_FALSE(exists(dir + "/missing.gcode"));
+}
+
 TEST(InkCli, BadPhotosAndBadInputAreOneLineAndWriteNothing) {
   const auto dir = fresh_dir("ink-bad");
   ASSERT_EQ(run_strand("line-matrix --nozzle 0.6 --report lm.json -o lm.gcode", dir).exit_code, 0);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 
 #include "machines/profile.h"
@@ -84,6 +85,70 @@ TEST(LineMatrix, ThePlannerPrintsEachLineAtItsOwnSpeed) {
   // The marks: the base speed times the profile's factor for frames.
   const auto frame = m.speed_factors.find(slicer::Feature::Frame);
   EXPECT_DOUBLE_EQ(feeds[2], 250.0 * (frame == m.speed_factors.end() ? 1.0 : frame->second));
+}
+
+// Raw text of a planned program, in order.
+std::vector<std::string> texts_of(const slicer::MotionProgram& p) {
+  std::vector<std::string> out;
+  for (const auto& mv : p.moves) {
+    if (mv.kind == slicer::MoveKind::Raw) out.push_back(slicer::raw_text(p, mv));
+  }
+  return out;
+}
+
+TEST(LineMatrix, RowsHoldOneFlowSoAPneumaticMachineChangesPressureOncePerRow) {
+  const auto t = matrix({{"nozzle", 0.6}, {"speeds", "200,400,600"}, {"flows", "0.8,1.2"}});
+  const auto& lines = t.derived["lines"];
+  ASSERT_EQ(lines.size(), 6u);
+  // Print order: the first row's three speeds, then the second row's (serpentine).
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_EQ(lines[i]["flow"].get<double>(), i < 3 ? 0.8 : 1.2) << i;
+  EXPECT_EQ(lines[2]["speed_mm_min"], 600);
+  EXPECT_EQ(lines[3]["speed_mm_min"], 600);
+
+  const auto manual = machines::load_profile("deltawasp-2040-clay");
+  const auto texts = texts_of(post::plan(t, manual, post::plan_options_from(t, 0.01)));
+  std::vector<std::string> pauses, labels;
+  for (const auto& x : texts) {
+    if (x.starts_with("M117 Set flow")) pauses.push_back(x);
+    if (x.starts_with("; line ")) labels.push_back(x);
+  }
+  // Two rows: the operator is asked twice (Marlin: message, then M0 waits), before each row.
+  ASSERT_EQ(pauses.size(), 2u);
+  EXPECT_EQ(pauses[0], "M117 Set flow 0.8, then resume\nM0 Set flow 0.8, then resume");
+  EXPECT_NE(pauses[1].find("Set flow 1.2"), std::string::npos);
+  ASSERT_EQ(labels.size(), 6u);
+  EXPECT_EQ(labels[3], "; line 3: speed 600 mm/min, flow 1.2");
+
+  // A pressure template: the value goes into it; no pause.
+  auto regulated = machines::load_profile("deltawasp-2040-clay-valve");
+  regulated.deposition.pressure_command = {"M42 P5 S{flow}"};
+  const auto set = texts_of(post::plan(t, regulated, post::plan_options_from(t, 0.01)));
+  EXPECT_EQ(std::count_if(set.begin(), set.end(), [](const std::string& x) { return x.starts_with("M42 P5 S1.2\n"); }), 1);
+  EXPECT_EQ(std::count_if(set.begin(), set.end(), [](const std::string& x) { return x.find("M0") != std::string::npos; }), 0);
+
+  // An E-driven machine takes the flow from the bead: no commands, E grows with the flow.
+  const auto screw = machines::load_profile("deltawasp-2040-clay-ldm");
+  const auto p = post::plan(t, screw, post::plan_options_from(t, 0.01));
+  for (const auto& x : texts_of(p)) EXPECT_EQ(x.find("Set flow"), std::string::npos) << x;
+}
+
+TEST(LineMatrix, AnInksFlowScalesTheVolumeOnEDrivenMachinesAndIsSetOnceOnPneumaticOnes) {
+  const auto t = find_generator("scaffold")->generate(
+      slicer::resolve_params(find_generator("scaffold")->table(), {{"nozzle", 0.6}, {"gap", 1}, {"size", "10x10"}, {"layers", 2}}));
+  auto volume = [](const slicer::MotionProgram& p) {
+    double v = 0;
+    for (const auto& mv : p.moves) v += mv.volume_mm3;
+    return v;
+  };
+  const auto screw = machines::load_profile("deltawasp-2040-clay-ldm");
+  auto o = post::plan_options_from(t, 0.01);
+  const double plain = volume(post::plan(t, screw, o));
+  o.flow = 1.25;
+  EXPECT_NEAR(volume(post::plan(t, screw, o)), 1.25 * plain, 1e-9 * plain);
+  const auto manual = machines::load_profile("deltawasp-2040-clay");
+  const auto texts = texts_of(post::plan(t, manual, o));
+  EXPECT_EQ(std::count_if(texts.begin(), texts.end(), [](const std::string& x) { return x.find("Set flow 1.25 for this ink") != std::string::npos; }), 1);
+  EXPECT_NEAR(volume(post::plan(t, manual, o)), plain, 1e-9 * plain) << "pneumatic: the pressure sets the flow, not the volume";
 }
 
 TEST(LineMatrix, BadInputNamesTheParameterAndItsRange) {
