@@ -41,6 +41,7 @@ struct GenerateArgs {
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
   bool viewer_e = false;
   std::string material;  // ink profile name or .json path (jobs/ink_profile.h)
+  std::string tools;     // printheads by feature or layer (postprocess/plan/tool_assignment.h)
 };
 
 // The shared tail of `strand <generator>` and `strand job`: nothing is written unless
@@ -65,6 +66,7 @@ int run_generator(const patterns::GeneratorSpec& spec, const GenerateArgs& a) {
   settings.substrate = given_params(slicer::substrate_table(), a.substrate);
   nlohmann::json given = given_params(table, a.flags);
   if (!a.material.empty()) settings.material = apply_ink_profile(load_ink_profile(a.material), a.material, table, given);
+  if (!a.tools.empty()) settings.tools = a.tools;
   return run_and_print(spec, given, settings);
 }
 
@@ -116,6 +118,9 @@ void add_generator_commands(CLI::App& app, Action& action) {
     sub->add_option("--material", args->material,
                     "ink profile (materials/NAME.json from strand calibrate): its speed and layer height "
                     "unless given");
+    sub->add_option("--tools", args->tools,
+                    "printheads of a multi-tool machine: by feature (node=1,ligament=0) or cycled per layer "
+                    "(layers=0,1)");
     add_quantity_option(sub, "--arc-tolerance", args->arc_tolerance_mm, "mm",
                     "max chord error when arcs become G1 segments [mm] (default 0.01)");
     sub->add_flag("--viewer-e", args->viewer_e,

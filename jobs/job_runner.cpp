@@ -19,7 +19,7 @@ namespace strand::jobs {
 namespace {
 
 const char* const kJobKeys[] = {"generator", "machine", "params", "output", "report",
-                                "arc-tolerance", "viewer-e", "substrate", "description", "schedule", "material"};
+                                "arc-tolerance", "viewer-e", "substrate", "description", "schedule", "material", "tools"};
 
 bool is_job_key(const std::string& k) {
   for (const char* known : kJobKeys) {
@@ -86,7 +86,7 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
     if (!is_job_key(k)) {
       problems.push_back(where + "." + k +
                          ": unknown key (generator, machine, params, output, report, "
-                         "arc-tolerance, viewer-e, substrate, description, schedule, material)");
+                         "arc-tolerance, viewer-e, substrate, description, schedule, material, tools)");
     }
   }
   if (!problems.empty()) throw InputError(problems);
@@ -120,6 +120,10 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
       throw InputError(where + ".schedule: a scheduled scaffold is flat (no substrate)");
     }
     s.settings.schedule = j.at("schedule");
+  }
+  if (j.contains("tools")) {
+    post::tool_assignment_from_json(j.at("tools"), where + ".tools");  // checked here, applied when planned
+    s.settings.tools = j.at("tools");
   }
   // An ink profile (strand calibrate) sets speed and layer height unless params give them.
   if (j.contains("material")) {
@@ -168,6 +172,15 @@ Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json&
   p.options = post::plan_options_from(p.layers->record, s.arc_tolerance_mm);
   if (s.material.is_object() && s.material.contains("flow") && s.material.at("flow").is_number()) {
     p.options.flow = s.material.at("flow").get<double>();
+  }
+  if (!s.tools.is_null()) {
+    p.options.tools = post::tool_assignment_from_json(s.tools, "tools");
+    const int count = machines::tool_count(p.machine);
+    if (p.options.tools.highest() >= count) {
+      throw InputError("tools = " + (s.tools.is_string() ? s.tools.get<std::string>() : s.tools.dump()).substr(0, 80) +
+                       ": tool " + std::to_string(p.options.tools.highest()) + " is not on machine " + p.machine.name + " (" +
+                       std::to_string(count) + " tool(s): 0 to " + std::to_string(count - 1) + ")");
+    }
   }
   return p;
 }

@@ -36,10 +36,14 @@ struct JobSettings {
   // A job file's "schedule" (per-layer-range values; strand scaffold only), given to the
   // generator as the value "schedule" after the table's check; null: none.
   nlohmann::json schedule;
+  // --tools / a job file's "tools": printheads by feature or layer (issue 33), as text
+  // ("node=1,ligament=0", "layers=0,1") or {"by_feature": {...}} / {"by_layer": [...]};
+  // null: every stroke on tool 0.
+  nlohmann::json tools;
 };
 
 // A job file's content, checked: {"generator", "machine", "params", "output", "report",
-// "arc-tolerance", "viewer-e", "substrate", "description", "schedule", "material"} ("material":
+// "arc-tolerance", "viewer-e", "substrate", "description", "schedule", "material", "tools"} ("material":
 // an ink profile's name or .json path, applied as --material is).
 struct JobSpec {
   const patterns::GeneratorSpec* generator = nullptr;

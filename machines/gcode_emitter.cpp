@@ -1,6 +1,7 @@
 // Writes a MotionProgram as G-code with viewer comments, flow words and valve commands.
 #include "machines/gcode_emitter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <ostream>
@@ -47,10 +48,16 @@ struct Word {
 class Writer {
  public:
   Writer(const MachineProfile& m, const EmitOptions& o, std::string& out, std::ostream* sink)
-      : m_(m), o_(o), out_(out), sink_(sink) {
+      : base_(m), m_(m), o_(o), out_(out), sink_(sink) {
     const auto model = m.deposition.model;
     e_words_ = model == DepositionModel::EVolumetric || o.viewer_e;
     relative_e_ = o.viewer_e || m.deposition.relative_e;
+    for (const Tool& t : m.tools) {
+      if (t.deposition.model != DepositionModel::EVolumetric) continue;
+      any_e_ = true;
+      relative_e_ = relative_e_ || t.deposition.relative_e;
+    }
+    any_e_ = any_e_ || e_words_;
   }
 
   void run(const slicer::MotionProgram& p) {
@@ -65,6 +72,14 @@ class Writer {
       out_ += comment("PREVIEW ONLY - NOT FOR PRINTING: E words are computed ink volume (mm3, relative) for viewers");
     }
     for (const auto& h : o_.header) out_ += h.empty() ? comment("") : comment(h);
+    if (!base_.tools.empty()) {
+      // PrusaSlicer's key: its viewer and Strand's reader place each head's moves by it.
+      std::string offsets;
+      for (const Tool& t : base_.tools) {
+        offsets += (offsets.empty() ? "" : ",") + fmt_xyz(t.offset_mm.x()) + "x" + fmt_xyz(t.offset_mm.y());
+      }
+      out_ += comment("extruder_offset = " + offsets);
+    }
   }
 
   // The next piece of the program; the first also writes the start G-code and preamble.
@@ -116,7 +131,7 @@ class Writer {
 
   void preamble() {
     out_ += code("G21", "millimetres") + code("G90", "absolute XYZ");
-    if (!e_words_) return;
+    if (!any_e_) return;
     // Marlin: G90 also resets the E mode, so the E mode must come after it.
     out_ += relative_e_ ? code("M83", "relative E") : code("M82", "absolute E");
     out_ += "G92 E0\n";
@@ -153,6 +168,7 @@ class Writer {
 
   void write(const Move& mv, const slicer::MotionProgram& p) {
     if (mv.layer >= 0 && mv.layer != layer_) layer_change(mv.layer, p);
+    if (!base_.tools.empty() && mv.kind != MoveKind::Raw && mv.tool != tool_) change_tool(mv.tool);
     switch (mv.kind) {
       case MoveKind::Raw:
         out_ += slicer::raw_text(p, mv);
@@ -162,6 +178,26 @@ class Writer {
       case MoveKind::Travel: travel(mv); break;
       case MoveKind::Deposit: deposit(mv); break;
     }
+  }
+
+  // Another printhead (issue 33): the last one's flow closed, the change in the firmware's
+  // words (or the profile's), then that tool's deposition; absolute E restarts from 0.
+  void change_tool(int tool) {
+    close_flow();
+    const auto k = static_cast<std::size_t>(std::clamp(tool, 0, static_cast<int>(base_.tools.size()) - 1));
+    const Tool& t = base_.tools[k];
+    const std::vector<std::string> fallback = {"T{tool}"};
+    for (const auto& line : base_.tool_change_gcode.empty() ? fallback : base_.tool_change_gcode) {
+      out_ += replace_all(replace_all(line, "{tool}", std::to_string(k)), "{name}", t.name) + "\n";
+    }
+    m_.deposition = t.deposition;
+    e_words_ = m_.deposition.model == DepositionModel::EVolumetric || o_.viewer_e;
+    retracted_ = false;
+    if (e_words_ && !relative_e_) {
+      out_ += "G92 E0\n";
+      e_ = 0.0;
+    }
+    tool_ = static_cast<int>(k);
   }
 
   void layer_change(int layer, const slicer::MotionProgram& p) {
@@ -329,11 +365,14 @@ class Writer {
     out_.append(buf, fixed_chars(buf, relative_e_ ? de : e_, 5));
   }
 
-  const MachineProfile& m_;
+  const MachineProfile& base_;
+  MachineProfile m_;  // base_ with the current tool's deposition
   const EmitOptions& o_;
   std::string& out_;
   std::ostream* sink_;
-  bool e_words_ = false;
+  bool e_words_ = false;  // the current tool's moves carry E
+  bool any_e_ = false;    // some tool does (the E mode is set at start)
+  int tool_ = -1;         // the printhead selected, -1 before the first (tools only)
   bool relative_e_ = false;
   double e_ = 0.0;
   bool flowing_ = false;

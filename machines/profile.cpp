@@ -110,6 +110,40 @@ Deposition read_deposition(const nlohmann::json& d, const std::string& origin,
   return out;
 }
 
+// "tools" and "tool_change_gcode" (issue 33): per tool its name, offset, nozzle and
+// deposition (the machine's unless given).
+void read_tools(const nlohmann::json& j, MachineProfile& p, const std::string& origin, std::vector<std::string>& problems) {
+  p.tool_change_gcode = lines(j, "tool_change_gcode");
+  if (!j.contains("tools")) {
+    if (!p.tool_change_gcode.empty()) problems.push_back(origin + ": tool_change_gcode: only with a tools list");
+    return;
+  }
+  const auto& tools = j.at("tools");
+  for (std::size_t k = 0; k < tools.size(); ++k) {
+    const auto& t = tools[k];
+    Tool tool;
+    tool.name = t.at("name").get<std::string>();
+    if (t.contains("offset_mm")) {
+      const auto& o = t.at("offset_mm");
+      tool.offset_mm = Vec3(o[0].get<double>(), o[1].get<double>(), o[2].get<double>());
+    }
+    tool.nozzle_mm = t.value("nozzle_mm", 0.0);
+    tool.deposition = t.contains("deposition")
+                          ? read_deposition(t.at("deposition"), origin + ": tools[" + std::to_string(k) + "]", problems)
+                          : p.deposition;
+    if (p.firmware == Firmware::Grbl && tool.deposition.model == DepositionModel::EVolumetric) {
+      problems.push_back(origin + ": tools[" + std::to_string(k) + "].deposition.model = \"e-volumetric\": GRBL has no E axis");
+    }
+    p.tools.push_back(std::move(tool));
+  }
+  if (!p.tools.empty() && p.tools[0].offset_mm.norm() > 0) {
+    problems.push_back(origin + ": tools[0].offset_mm: must be [0, 0, 0] (offsets are from the first tool)");
+  }
+  if (p.firmware == Firmware::Grbl && p.tool_change_gcode.empty()) {
+    problems.push_back(origin + ": tool_change_gcode: missing (GRBL has no T command; give the machine's own)");
+  }
+}
+
 Firmware firmware_from(const std::string& s) {
   if (s == "reprap") return Firmware::RepRap;
   if (s == "klipper") return Firmware::Klipper;
@@ -149,6 +183,18 @@ std::string to_string(DepositionModel m) {
   return "";
 }
 
+int tool_count(const MachineProfile& m) { return m.tools.empty() ? 1 : static_cast<int>(m.tools.size()); }
+
+const Deposition& tool_deposition(const MachineProfile& m, int tool) {
+  if (m.tools.empty() || tool < 0 || tool >= static_cast<int>(m.tools.size())) return m.deposition;
+  return m.tools[static_cast<std::size_t>(tool)].deposition;
+}
+
+Vec3 tool_offset(const MachineProfile& m, int tool) {
+  if (m.tools.empty() || tool < 0 || tool >= static_cast<int>(m.tools.size())) return Vec3::Zero();
+  return m.tools[static_cast<std::size_t>(tool)].offset_mm;
+}
+
 MachineProfile profile_from_json(const nlohmann::json& j, const std::string& origin) {
   std::vector<std::string> problems = check_profile_schema(j, origin);
   if (!problems.empty()) throw InputError(problems);
@@ -178,6 +224,7 @@ MachineProfile profile_from_json(const nlohmann::json& j, const std::string& ori
   p.max_surface_slope_deg = j.value("max_surface_slope_deg", p.max_surface_slope_deg);
   p.start_gcode = lines(j, "start_gcode");
   p.end_gcode = lines(j, "end_gcode");
+  read_tools(j, p, origin, problems);
   p.source = j;
   p.plotter = read_plotter(j, origin, problems);  // plotting (issue 5)
   p.robot = read_robot_cell(j, origin, problems);  // curved substrates (issue 11)

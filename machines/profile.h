@@ -62,6 +62,15 @@ struct Deposition {
   double extrude_max_length = 200.0;
 };
 
+// One printhead of a machine with several (issue 33): where its nozzle sits relative to the
+// first one, and how it deposits (the machine's deposition unless it has its own).
+struct Tool {
+  std::string name;
+  Vec3 offset_mm = Vec3::Zero();  // nozzle position minus tool 0's, mm (Strand moves by it)
+  double nozzle_mm = 0.0;         // 0: not given
+  Deposition deposition;
+};
+
 struct Limits {
   double max_feed_mm_per_min = 6000.0;
   double travel_feed_mm_per_min = 3000.0;
@@ -89,6 +98,11 @@ struct MachineProfile {
   // slope, normal from vertical, the nozzle follows before its side touches the substrate;
   // 30 deg suits a plain syringe needle over a gently curved part, deg.
   double max_surface_slope_deg = 30.0;
+  // Printheads (empty: one, tool 0, with `deposition`). Strand applies each tool's offset
+  // to the coordinates it writes (as PrusaSlicer does), so firmware offsets must be zero.
+  std::vector<Tool> tools;
+  // A tool change: template lines with {tool} (index) and {name}; default "T{tool}".
+  std::vector<std::string> tool_change_gcode;
   std::vector<std::string> start_gcode;  // templates; {lead_s}, {lead_ms}, {message}
   std::vector<std::string> end_gcode;
   nlohmann::json source;             // the profile as loaded, for reports
@@ -127,5 +141,11 @@ std::vector<std::pair<std::string, std::string>> list_profiles();
 std::string to_string(Firmware f);
 std::string to_string(KinematicsKind k);
 std::string to_string(DepositionModel m);
+
+// How many tools the machine has (1 without a "tools" list) and tool k's deposition (the
+// machine's when it has no tools list).
+int tool_count(const MachineProfile& m);
+const Deposition& tool_deposition(const MachineProfile& m, int tool);
+Vec3 tool_offset(const MachineProfile& m, int tool);
 
 }  // namespace strand::machines

@@ -10,7 +10,7 @@ namespace strand::machines {
 
 namespace {
 
-enum class T { Number, Bool, String, StringList, NumberList, Vec2, Vec3, Object, FreeObject };
+enum class T { Number, Bool, String, StringList, NumberList, Vec2, Vec3, Object, FreeObject, ObjectList };
 
 struct Field {
   const char* key;
@@ -26,6 +26,33 @@ struct Field {
 Field object(const char* key, bool required, std::vector<Field> children) {
   return {key, T::Object, required, std::nullopt, std::nullopt, {}, std::move(children)};
 }
+
+// clang-format off
+// The deposition object's keys: the machine's, and each tool's own.
+std::vector<Field> deposition_fields() {
+  return {
+      {"model", T::String, true, {}, {}, {"manual-valve", "valve", "e-volumetric", "none"}},
+      {"lead_s", T::Number, false, 0.0, 600.0},
+      {"lag_s", T::Number, false, 0.0, 60.0},
+      {"message", T::String},
+      {"on_gcode", T::StringList},
+      {"off_gcode", T::StringList},
+      {"pressure_command", T::StringList},
+      {"mm3_per_e", T::Number, false, 1e-6, 1e6},
+      {"filament_diameter_mm", T::Number, false, 0.1, 100.0},
+      {"relative_e", T::Bool},
+      {"prime_e", T::Number, false, 0.0, 1000.0},
+      {"retract_e", T::Number, false, 0.0, 100.0},
+      {"reservoir_ml", T::Number, false, 0.1, 100000.0},
+      {"extrude_max_length", T::Number, false, 1.0, 1e6},
+  };
+}
+
+// A list of objects (the tools): each element's keys checked against `children`.
+Field object_list(const char* key, std::vector<Field> children) {
+  return {key, T::ObjectList, false, 1.0, 16.0, {}, std::move(children)};
+}
+// clang-format on
 
 // One line per key; an object's keys indented below it (kept so: clang-format would spread
 // each object call over its own indentation).
@@ -48,22 +75,14 @@ const std::vector<Field>& schema() {
           {"flavour", T::String, true, {}, {}, {"marlin", "reprap", "klipper", "grbl"}},
           {"arcs", T::Bool, true},
       }),
-      object("deposition", true, {
-          {"model", T::String, true, {}, {}, {"manual-valve", "valve", "e-volumetric", "none"}},
-          {"lead_s", T::Number, false, 0.0, 600.0},
-          {"lag_s", T::Number, false, 0.0, 60.0},
-          {"message", T::String},
-          {"on_gcode", T::StringList},
-          {"off_gcode", T::StringList},
-          {"pressure_command", T::StringList},
-          {"mm3_per_e", T::Number, false, 1e-6, 1e6},
-          {"filament_diameter_mm", T::Number, false, 0.1, 100.0},
-          {"relative_e", T::Bool},
-          {"prime_e", T::Number, false, 0.0, 1000.0},
-          {"retract_e", T::Number, false, 0.0, 100.0},
-          {"reservoir_ml", T::Number, false, 0.1, 100000.0},
-          {"extrude_max_length", T::Number, false, 1.0, 1e6},
+      object("deposition", true, deposition_fields()),
+      object_list("tools", {  // several printheads (issue 33)
+          {"name", T::String, true},
+          {"offset_mm", T::Vec3, false, -1000.0, 1000.0},
+          {"nozzle_mm", T::Number, false, 0.01, 20.0},
+          object("deposition", false, deposition_fields()),
       }),
+      {"tool_change_gcode", T::StringList},
       object("limits", false, {
           {"max_feed_mm_per_min", T::Number, false, 1.0, 1e6},
           {"travel_feed_mm_per_min", T::Number, false, 1.0, 1e6},
@@ -236,6 +255,8 @@ const char* type_rule(T t) {
     case T::Object:
     case T::FreeObject:
       return "must be an object";
+    case T::ObjectList:
+      return "must be a list of 1 to 16 objects";
   }
   return "";
 }
@@ -271,6 +292,12 @@ bool type_ok(T t, const nlohmann::json& v) {
     case T::Object:
     case T::FreeObject:
       return v.is_object();
+    case T::ObjectList:
+      if (!v.is_array() || v.empty() || v.size() > 16) return false;
+      for (const auto& e : v) {
+        if (!e.is_object()) return false;
+      }
+      return true;
   }
   return false;
 }
@@ -346,6 +373,9 @@ void check(const std::vector<Field>& fields, const nlohmann::json& j, const std:
       if (!ok) out.push_back(origin + ": " + path + " = " + shown(v) + ": must be one of " + list);
     }
     if (f.type == T::Object) check(f.children, v, path + ".", origin, out);
+    if (f.type == T::ObjectList) {
+      for (std::size_t k = 0; k < v.size(); ++k) check(f.children, v[k], path + "[" + std::to_string(k) + "].", origin, out);
+    }
   }
 }
 

@@ -95,6 +95,7 @@ nlohmann::json to_json(const CheckReport& r) {
                       {"strands", l.strands},
                       {"crossings", cross},
                       {"touches", touch}});
+    if (l.strands_by_tool.size() > 1) layers.back()["strands_by_tool"] = l.strands_by_tool;
   }
   nlohmann::json issues = nlohmann::json::array(), arcs = nlohmann::json::array(),
                  outside = nlohmann::json::array();
@@ -158,7 +159,7 @@ std::string layer_table(const CheckReport& r) {
   for (std::size_t b = 0; b < r.layers.size();) {
     const auto& L = r.layers[b];
     std::size_t e = b + 1;
-    while (e < r.layers.size() && r.layers[e].strands == L.strands &&
+    while (e < r.layers.size() && r.layers[e].strands == L.strands && r.layers[e].strands_by_tool == L.strands_by_tool &&
            r.layers[e].crossings.size() == L.crossings.size() &&
            r.layers[e].touches.size() == L.touches.size()) {
       ++e;
@@ -171,6 +172,12 @@ std::string layer_table(const CheckReport& r) {
                   layer_range(L.layer, last.layer).c_str(), z.c_str(), L.strands,
                   L.crossings.size(), L.touches.size());
     out += row;
+    if (L.strands_by_tool.size() > 1 && r.rules.rules != CheckRules::Plot) {  // several printheads: each one's
+      out.pop_back();
+      out += "  by tool";
+      for (std::size_t k = 0; k < L.strands_by_tool.size(); ++k) out += " T" + std::to_string(k) + ":" + std::to_string(L.strands_by_tool[k]);
+      out += "\n";
+    }
     b = e;
   }
   return out;

@@ -64,6 +64,7 @@ struct LayerCheck {
   double z_mm = 0.0;
   int strands = 0;  // uninterrupted deposit runs
   std::vector<Contact> crossings, touches;
+  std::vector<int> strands_by_tool;  // the same runs by printhead (T<n>), index = tool
 };
 
 // One problem tied to a move: where it is and why (`what` is the checker's own words).

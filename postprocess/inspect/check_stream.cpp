@@ -76,7 +76,7 @@ CheckStream::CheckStream(const CheckOptions& o) : o_(o) {
 LayerCheck& CheckStream::row(int layer) {
   if (layer < 0) return before_first_;
   while (rows_.size() <= static_cast<std::size_t>(layer))
-    rows_.push_back({static_cast<int>(rows_.size()), 0.0, 0, {}, {}});
+    rows_.push_back({static_cast<int>(rows_.size()), 0.0, 0, {}, {}, {}});
   return rows_[static_cast<std::size_t>(layer)];
 }
 
@@ -119,7 +119,13 @@ void CheckStream::strands(const slicer::Move& mv, int layers) {
   if (mv.kind == MoveKind::Dwell || mv.kind == MoveKind::Raw) return;
   const double len = move_length(at_, mv);
   if (mv.kind == MoveKind::Deposit) {
-    if (!depositing_ && mv.layer >= 0 && mv.layer < layers) ++row(mv.layer).strands;
+    if (!depositing_ && mv.layer >= 0 && mv.layer < layers) {
+      LayerCheck& r = row(mv.layer);
+      ++r.strands;
+      const auto k = static_cast<std::size_t>(std::max<int>(mv.tool, 0));
+      if (r.strands_by_tool.size() <= k) r.strands_by_tool.resize(k + 1, 0);
+      ++r.strands_by_tool[k];
+    }
     depositing_ = true;
   } else if (len > 0) {
     depositing_ = false;

@@ -114,6 +114,8 @@ void Reader::words(const Words& w, std::string_view s, int n) {
   const int code = static_cast<int>(w.value[0]);
   if (cmd == 'G') g_code(code, w, n);
   if (cmd == 'M') m_code(code, w, n);
+  // T<n>: printhead n from here on (Marlin, RepRapFirmware, Klipper; PrusaSlicer's files).
+  if (cmd == 'T' && w.count == 1 && code <= 63 && w.value[0] == code) tool_ = static_cast<std::int16_t>(code);
 }
 
 bool Reader::line_has_e(std::string_view l) {
@@ -152,6 +154,10 @@ void Reader::line(std::string_view s, int n) {
 }
 
 void Reader::comment(std::string_view c, int) {
+  if (starts_with(trim(c), "extruder_offset = ")) {
+    tool_offsets(trim(c).substr(18));
+    return;
+  }
   if (starts_with(c, "LAYER_CHANGE")) {
     new_layer(std::nullopt);
   } else if (starts_with(c, "LAYER:")) {
@@ -179,6 +185,28 @@ void Reader::comment(std::string_view c, int) {
   } else {
     pen_colour(trim(c));
   }
+}
+
+// "0x0,35x0": per printhead x and y, mm; at most 64 heads, anything unreadable ignored whole.
+void Reader::tool_offsets(std::string_view c) {
+  std::vector<Vec2> offsets;
+  while (!c.empty() && offsets.size() < 64) {
+    const auto comma = c.find(',');
+    const std::string_view item = c.substr(0, comma);
+    const auto x = item.find('x');
+    double a = 0, b = 0;
+    if (x == std::string_view::npos) return;
+    const auto ra = std::from_chars(item.data(), item.data() + x, a);
+    const auto rb = std::from_chars(item.data() + x + 1, item.data() + item.size(), b);
+    if (ra.ec != std::errc() || rb.ec != std::errc() || !std::isfinite(a) || !std::isfinite(b) || std::abs(a) > 1e4 ||
+        std::abs(b) > 1e4) {
+      return;
+    }
+    offsets.emplace_back(a * scale_, b * scale_);
+    if (comma == std::string_view::npos) break;
+    c.remove_prefix(comma + 1);
+  }
+  tool_offsets_ = std::move(offsets);
 }
 
 void Reader::pen_colour(std::string_view c) {
@@ -307,6 +335,12 @@ void Reader::motion(int code, const Words& w, int n) {
   mv.width_mm = width_;
   mv.kind = (has_e_ ? de > 0.0 : draws(code, target)) ? MoveKind::Deposit : MoveKind::Travel;
   if (code == 2 || code == 3) arc(mv, code, w, n);
+  if (tool_ >= 0 && static_cast<std::size_t>(tool_) < tool_offsets_.size()) {
+    const Vec2 o = tool_offsets_[static_cast<std::size_t>(tool_)];
+    mv.end_mm.x() += o.x();
+    mv.end_mm.y() += o.y();
+    mv.center_mm += o;
+  }
   if (!has_markers_ && mv.kind == MoveKind::Deposit &&
       (layer_ < 0 || std::abs(target.z() - out_.program.layers.back().z_mm) > 1e-6)) {
     new_layer(target.z());

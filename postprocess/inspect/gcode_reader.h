@@ -178,7 +178,11 @@ class Reader {
   std::size_t loop_line_ = 0;  // the loop or call that repeated lines last (1-based)
   bool stopped_ = false;       // an unsupported construct: the rest is not read
   Feature feature_ = Feature::Infill;
-  std::int16_t tool_ = 0;  // pen (;PEN:k) drawing from here on, 0-based
+  std::int16_t tool_ = 0;  // pen (;PEN:k) or printhead (T<n>) from here on, 0-based
+  // Printheads' nozzle offsets from the carriage ("; extruder_offset = 0x0,35x0", as
+  // PrusaSlicer writes them): moves are read where each nozzle lays its bead.
+  std::vector<slicer::Vec2> tool_offsets_;
+  void tool_offsets(std::string_view c);
 };
 
 }  // namespace strand::post::gcode

@@ -1,6 +1,7 @@
 // Distance, volume, strand and naive time sums over a MotionProgram.
 #include "postprocess/plan/estimate.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "postprocess/plan/motion_time.h"
@@ -50,12 +51,21 @@ struct EstimateStream::Impl {
       return;
     }
     if (mv.kind == MoveKind::Raw) return;
+    if (last_tool >= 0 && mv.tool != last_tool) ++e.tool_changes;
+    last_tool = mv.tool;
     const double len = move_length(at, mv);
     const double t = mv.feed_mm_per_min > 0 ? len / slicer::mm_per_min_to_mm_per_s(mv.feed_mm_per_min) : 0.0;
     e.time_naive_s += t;
     if (mv.kind == MoveKind::Deposit) {
       e.deposit_length_mm += len;
       e.volume_mm3 += mv.volume_mm3;
+      const auto k = static_cast<std::size_t>(std::max<int>(mv.tool, 0));
+      while (e.tools.size() <= k) e.tools.push_back({static_cast<int>(e.tools.size())});
+      ToolEstimate& te = e.tools[k];
+      if (!depositing) ++te.strands;
+      te.deposit_length_mm += len;
+      te.volume_mm3 += mv.volume_mm3;
+      te.time_naive_s += t;
       if (le) {
         if (!depositing) ++le->strands;
         le->deposit_length_mm += len;
@@ -92,6 +102,7 @@ struct EstimateStream::Impl {
   bool started = false;
   bool depositing = false;
   int last_layer = -2;
+  int last_tool = -1;
   TimeOptions time_options;
   std::unique_ptr<TrapezoidTimer> timer;
 };

@@ -20,6 +20,15 @@ struct LayerEstimate {
   double time_trapezoid_s = 0.0; // acceleration and junction limits (motion_time.h)
 };
 
+// What one printhead deposits (issue 33); time is its deposit moves' distance / feed.
+struct ToolEstimate {
+  int tool = 0;
+  int strands = 0;
+  double deposit_length_mm = 0.0;
+  double volume_mm3 = 0.0;
+  double time_naive_s = 0.0;
+};
+
 struct Estimate {
   std::vector<LayerEstimate> layers;
   double deposit_length_mm = 0.0;
@@ -27,6 +36,8 @@ struct Estimate {
   double volume_mm3 = 0.0;
   double time_naive_s = 0.0;     // sum of distance / feed, dwells included
   double time_trapezoid_s = 0.0; // 0 unless estimated for a machine
+  std::vector<ToolEstimate> tools;  // by tool index, every tool up to the highest used
+  int tool_changes = 0;             // moves whose tool differs from the move before
 };
 
 // Length of a move from `from` (arcs measured along the arc), mm.

@@ -8,6 +8,7 @@
 #include "postprocess/plan/arc_segmentation.h"
 #include "postprocess/plan/placement.h"
 #include "postprocess/plan/valve_lag.h"
+#include "slicer/input_error.h"
 #include "slicer/units.h"
 #include "slicer/tolerances.h"
 
@@ -38,7 +39,11 @@ class Planner {
   void add_layer(const slicer::Layer& layer) {
     layer_ = static_cast<int>(p_.layers.size());
     p_.layers.push_back({layer.z_mm, layer.height_mm});
-    for (const auto& stroke : layer.strokes) add_stroke(stroke, layer.z_mm);
+    if (o_.tools.empty()) {
+      for (const auto& stroke : layer.strokes) add_stroke(stroke, layer.z_mm);
+      return;
+    }
+    for (const auto& stroke : assign_tools(layer.strokes, o_.tools, layer_, tool_)) add_stroke(stroke, layer.z_mm);
   }
 
   const Vec3& position() const { return pos_; }
@@ -53,6 +58,9 @@ class Planner {
       for (const auto& s : layer.strokes) {
         n += 3;  // lift, cross, lower
         if (!o_.stroke_flows.empty() || !o_.stroke_labels.empty() || o_.flow) n += 2;  // lift, text
+        // A change of tool lifts once more; a stroke cut where its tool changes (by feature)
+        // makes one more stroke per segment at most.
+        if (!o_.tools.empty()) n += 4 * (1 + (o_.tools.by_feature.empty() ? 0 : s.segments.size()));
         Vec2 at = s.start_mm;
         for (const auto& seg : s.segments) {
           if (seg.kind == slicer::SegmentKind::Line || m_.arcs) {
@@ -70,7 +78,23 @@ class Planner {
     return n;
   }
 
-  void add_stroke(const slicer::Stroke& s, double z) {
+  void add_stroke(const slicer::Stroke& s, double layer_z) {
+    // Each printhead's nozzle sits at its offset from the first: the carriage goes that much
+    // the other way (issue 33; Strand moves by the offsets, as PrusaSlicer does).
+    if (s.tool != tool_) {
+      if (s.tool < 0 || s.tool >= machines::tool_count(m_)) {
+        throw InputError("tools: tool " + std::to_string(s.tool) + " is not on machine " + m_.name + " (" +
+                         std::to_string(machines::tool_count(m_)) + " tool(s): 0 to " + std::to_string(machines::tool_count(m_) - 1) + ")");
+      }
+      if (started_ && m_.travel_lift_mm > 0) {
+        push_travel(Vec3(pos_.x(), pos_.y(), pos_.z() + m_.travel_lift_mm), m_.limits.z_feed_mm_per_min);
+      }
+      tool_ = s.tool;
+      const Vec3 o = machines::tool_offset(m_, tool_);
+      offset_ = m_.volume.part_center_mm - o.head<2>();
+      z_offset_ = -o.z();
+    }
+    const double z = layer_z + z_offset_;
     const Vec3 start(s.start_mm.x() + offset_.x(), s.start_mm.y() + offset_.y(), z);
     const bool own_flow = stroke_ < o_.stroke_flows.size();
     if (own_flow) {
@@ -134,6 +158,7 @@ class Planner {
   Move deposit_move(const Vec2& end, double z, double feed, double width, Feature f) const {
     Move mv;
     mv.kind = MoveKind::Deposit;
+    mv.tool = static_cast<std::int16_t>(tool_);
     mv.end_mm = Vec3(end.x(), end.y(), z);
     mv.feed_mm_per_min = feed;
     mv.width_mm = width;
@@ -196,6 +221,7 @@ class Planner {
   void push_travel(const Vec3& to, double feed) {
     Move mv;
     mv.kind = MoveKind::Travel;
+    mv.tool = static_cast<std::int16_t>(tool_);
     mv.end_mm = to;
     mv.feed_mm_per_min = feed;
     mv.layer = layer_;
@@ -206,7 +232,9 @@ class Planner {
   const machines::MachineProfile& m_;
   const PlanOptions& o_;
   slicer::MotionProgram& p_;
-  Vec2 offset_ = Vec2::Zero();
+  Vec2 offset_ = Vec2::Zero();  // part frame to machine frame for the current tool
+  double z_offset_ = 0.0;
+  int tool_ = 0;                // the printhead the strokes are planned for
   Vec3 pos_ = Vec3::Zero();
   bool started_ = false;
   int layer_ = -1;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "machines/profile.h"
+#include "postprocess/plan/tool_assignment.h"
 #include "slicer/motion.h"
 #include "slicer/toolpath.h"
 
@@ -36,6 +37,8 @@ struct PlanOptions {
   // The ink profile's flow (--material): E-driven machines push this times the volume,
   // pneumatic ones set it once before the first stroke. Strokes with stroke_flows keep theirs.
   std::optional<double> flow;
+  // Printheads by feature or layer (--tools); empty: each stroke's own tool.
+  ToolAssignment tools;
 };
 
 // Reads "speed" and "<feature>-speed-factor" from the toolpath's parameters and

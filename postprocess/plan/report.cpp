@@ -38,7 +38,7 @@ nlohmann::json make_report(const slicer::Toolpath& t, const machines::MachinePro
                       {"time_trapezoid_s", round_to(l.time_trapezoid_s, 2)}});
     strands.push_back(l.strands);
   }
-  return {
+  nlohmann::json report = {
       {"generator", t.generator},
       {"parameters", t.parameters},
       {"derived", t.derived},
@@ -60,6 +60,23 @@ nlohmann::json make_report(const slicer::Toolpath& t, const machines::MachinePro
       {"strands_per_layer", std::move(strands)},  // moved: a tall job has thousands of layers
       {"layers", std::move(layers)},
   };
+  // Several printheads (issue 33): each one's ink and length, and the changes.
+  if (!m.tools.empty() || e.tools.size() > 1) {
+    nlohmann::json tools = nlohmann::json::array();
+    for (const auto& te : e.tools) {
+      const auto k = static_cast<std::size_t>(te.tool);
+      tools.push_back({{"tool", te.tool},
+                       {"name", k < m.tools.size() ? m.tools[k].name : "tool " + std::to_string(te.tool)},
+                       {"strands", te.strands},
+                       {"deposit_length_mm", round_to(te.deposit_length_mm, 3)},
+                       {"ink_volume_mm3", round_to(te.volume_mm3, 3)},
+                       {"ink_volume_ml", round_to(slicer::mm3_to_ml(te.volume_mm3), 4)},
+                       {"time_deposit_s", round_to(te.time_naive_s, 1)}});
+    }
+    report["totals"]["tools"] = std::move(tools);
+    report["totals"]["tool_changes"] = e.tool_changes;
+  }
+  return report;
 }
 
 std::string summary_text(const nlohmann::json& r) {
@@ -111,6 +128,15 @@ std::string summary_text(const nlohmann::json& r) {
     << machines::fmt_fixed(tot.at("ink_volume_ml").get<double>(), 2) << " mL ("
     << machines::fmt_fixed(tot.at("syringe_fills").get<double>(), 2) << " fills of the "
     << slicer::short_number(tot.at("reservoir_ml").get<double>()) << " mL reservoir)\n";
+  if (tot.contains("tools")) {
+    o << "  tools         ";
+    for (const auto& t : tot.at("tools")) {
+      o << " " << t.at("tool").get<int>() << " (" << t.at("name").get<std::string>() << ") "
+        << machines::fmt_fixed(t.at("deposit_length_mm").get<double>() / 1000.0, 3) << " m "
+        << machines::fmt_fixed(t.at("ink_volume_ml").get<double>(), 2) << " mL;";
+    }
+    o << " " << tot.at("tool_changes").get<int>() << " change(s)\n";
+  }
   o << "  time           " << clock_text(tot.at("time_trapezoid_s").get<double>())
     << " (acceleration + junction limits), " << clock_text(tot.at("time_naive_s").get<double>())
     << " (distance / feed)\n";

@@ -75,6 +75,7 @@ PreviewScene preview_scene(const slicer::MotionProgram& program, double arc_tole
     }
     append_move(s.paths.back(), at, mv, arc_tolerance_mm);
     if (!travel) s.bead_width_mm = std::max(s.bead_width_mm, mv.width_mm);
+    if (!travel && mv.feature != slicer::Feature::Pen && mv.tool != 0) s.by_tool = true;
     at = mv.end_mm;
     open = true;
   }
@@ -151,6 +152,13 @@ std::optional<Rgb> parse_hex_colour(const std::string& text) {
 }
 
 PreviewKey deposit_key(const PreviewScene& scene, const PreviewPath& path) {
+  if (path.feature != slicer::Feature::Pen && scene.by_tool) {
+    // Printheads: blue, orange, green, ... (Tableau 10), far apart on any background.
+    static const Rgb kTools[] = {{0.12, 0.47, 0.71}, {1.00, 0.50, 0.05}, {0.17, 0.63, 0.17}, {0.84, 0.15, 0.16},
+                                 {0.58, 0.40, 0.74}, {0.55, 0.34, 0.29}, {0.89, 0.47, 0.76}, {0.09, 0.75, 0.81}};
+    const auto k = static_cast<std::size_t>(std::max(path.tool, 0));
+    return {"tool " + std::to_string(k), kTools[k % std::size(kTools)]};
+  }
   if (path.feature != slicer::Feature::Pen) {
     return {slicer::to_string(path.feature), feature_colour(path.feature)};
   }
@@ -174,9 +182,11 @@ std::vector<PreviewKey> deposit_keys(const PreviewScene& scene,
   std::vector<const PreviewPath*> first;
   for (const auto& p : scene.paths) {
     if (p.travel || (keep && !keep(p))) continue;
-    const int tool = p.feature == slicer::Feature::Pen ? p.tool : 0;
-    if (std::find(used.begin(), used.end(), std::pair{p.feature, tool}) != used.end()) continue;
-    used.emplace_back(p.feature, tool);
+    const bool by_tool = p.feature != slicer::Feature::Pen && scene.by_tool;
+    const int tool = p.feature == slicer::Feature::Pen || by_tool ? p.tool : 0;
+    const slicer::Feature feature = by_tool ? slicer::Feature::Infill : p.feature;
+    if (std::find(used.begin(), used.end(), std::pair{feature, tool}) != used.end()) continue;
+    used.emplace_back(feature, tool);
     first.push_back(&p);
   }
   std::vector<std::size_t> order(used.size());

@@ -46,6 +46,8 @@ struct PreviewScene {
   std::string layer_value = "z";
   // Pens' colours from the file ("#rrggbb" for pen 1, 2, ...; empty where not given).
   std::vector<std::string> pen_colours;
+  // Deposits (not pens) come from more than one printhead (issue 33): coloured by tool.
+  bool by_tool = false;
 
   bool operator==(const PreviewScene&) const = default;
 };
@@ -81,7 +83,8 @@ std::optional<Rgb> parse_hex_colour(const std::string& text);
 
 // What a deposit is drawn in when coloured by feature, and its legend entry: the feature
 // ("wall", feature_colour), or for pen drawings each pen on its own ("pen 2", the pen's
-// colour from the file, else a distinct colour per pen; pen 1 dark grey).
+// colour from the file, else a distinct colour per pen; pen 1 dark grey), or in a scene
+// `by_tool` each printhead ("tool 1", its own colour).
 struct PreviewKey {
   std::string name;
   Rgb colour;
