@@ -198,6 +198,7 @@ post::Produced produce_prepared(Prepared& p, const patterns::GeneratorSpec& gene
   post::Produced produced = post::produce_layers(*p.layers, p.machine, p.options, po);
   slicer::progress_phase(s.progress, "checking");
   vet_produced(produced, p.machine, s.arc_tolerance_mm);
+  if (!s.material.is_null()) produced.report["material"] = s.material;
   return produced;
 }
 
@@ -243,7 +244,6 @@ post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann:
   out.prepend(path, produced.gcode_head);
   if (s.viewer_e) out.prepend(viewer_output_path(path), produced.viewer_gcode_head);
 #endif
-  if (!s.material.is_null()) produced.report["material"] = s.material;
   if (!s.report.empty()) out.stage(s.report, slicer::dump_json(produced.report) + "\n");
   slicer::progress_phase(s.progress, "writing files");
   out.commit();

@@ -16,6 +16,7 @@
 #include "jobs/sweep_manifest.h"
 #include "jobs/sweep_runner.h"
 #include "jobs/sweep_spec.h"
+#include "jobs/ink_profile.h"
 #include "machines/profile.h"
 #include "patterns/registry.h"
 #include "postprocess/inspect/gcode_parser.h"
@@ -139,16 +140,22 @@ std::shared_ptr<RawResult> produce(const patterns::GeneratorSpec& g, const nlohm
   return r;
 }
 
+// `strand GENERATOR --flags`: `material` an ink profile's name or path, `tools` the --tools
+// text or its job-file JSON ({"by_feature": ...}); empty: none.
 std::shared_ptr<RawResult> run_generator(const std::string& name, const Texts& texts,
                                          const Texts& substrate, const std::string& machine,
-                                         const std::string& arc_text, py::object callback) {
+                                         const std::string& arc_text, const std::string& material,
+                                         const std::string& tools, py::object callback) {
   const patterns::GeneratorSpec* g = patterns::find_generator(name);
   if (!g) throw InputError("generator = " + name + ": unknown");
   jobs::JobSettings s;
   if (!machine.empty()) s.machine = machine;
   if (!arc_text.empty()) s.arc_tolerance_mm = arc_tolerance(arc_text);
   s.substrate = given(slicer::substrate_table(), substrate);
-  return produce(*g, given(g->table(), texts), s, std::move(callback));
+  nlohmann::json params = given(g->table(), texts);
+  if (!material.empty()) s.material = jobs::apply_ink_profile(jobs::load_ink_profile(material), material, g->table(), params);
+  if (!tools.empty()) s.tools = tools.starts_with("{") ? slicer::parse_json(tools, "tools") : nlohmann::json(tools);
+  return produce(*g, params, s, std::move(callback));
 }
 
 // `strand job FILE` (path set: read from it, a substrate mesh found beside it, the output

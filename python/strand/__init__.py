@@ -71,7 +71,9 @@ def _substrate_texts(substrate):
 _COMMON = [
     "Also: machine (profile name or .json path, default deltawasp-2040-clay), arc_tolerance",
     "(mm or text with a unit), substrate (dict of the curved-substrate flags: type, radius,",
-    "length, wrap, arc_length_at, mesh, extrusion), progress (callable(phase, done, steps)).",
+    "length, wrap, arc_length_at, mesh, extrusion), material (ink profile name or .json path, as",
+    "--material), tools ('node=1,ligament=0', 'layers=0,1' or {'by_feature': {'node': 1}} as",
+    "--tools), progress (callable(phase, done, steps)).",
     "Returns a strand.Result; nothing is written until Result.write().",
 ]
 
@@ -80,21 +82,23 @@ def _make_generator(spec):
     name, params = spec["name"], spec["params"]
     function = py_name(name)
 
-    def run(*, machine=None, arc_tolerance=None, substrate=None, progress=None, **values):
+    def run(*, machine=None, arc_tolerance=None, substrate=None, material=None, tools=None,
+            progress=None, **values):
         texts = param_texts(function, name, params, values)
         arc = arc_tolerance if isinstance(arc_tolerance, str) or arc_tolerance is None \
             else param_texts(function, name, [{"key": "arc-tolerance", "type": "number"}],
                              {"arc-tolerance": arc_tolerance})["arc-tolerance"]
+        tools_text = _json_text(tools) if isinstance(tools, dict) else _text("tools", tools)
         raw = _strand.run_generator(name, texts, _substrate_texts(substrate),
                                     _text("machine", machine), _text("arc_tolerance", arc),
-                                    _progress(progress))
+                                    _text("material", material), tools_text, _progress(progress))
         return Result(raw)
 
     run.__name__ = run.__qualname__ = function
     run.__doc__ = doc_for(f"{function}(**params) -> strand.Result", spec["summary"], params, _COMMON)
     keywords = [Parameter(py_name(p["key"]), Parameter.KEYWORD_ONLY, default=None) for p in params]
     keywords += [Parameter(k, Parameter.KEYWORD_ONLY, default=None)
-                 for k in ("machine", "arc_tolerance", "substrate", "progress")]
+                 for k in ("machine", "arc_tolerance", "substrate", "material", "tools", "progress")]
     run.__signature__ = Signature(keywords)
     return run
 

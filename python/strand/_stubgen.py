@@ -73,7 +73,8 @@ def stub_text():
     for g in strand.generators():
         parts.append(_function(py_name(g["name"]), g["params"], extra=(
             "machine: str | PathLike[str] | None = None,\n    arc_tolerance: float | str | None = None,\n"
-            "    substrate: dict[str, Any] | None = None,\n    progress: Progress = None")))
+            "    substrate: dict[str, Any] | None = None,\n    material: str | PathLike[str] | None = None,\n"
+            "    tools: str | dict[str, Any] | None = None,\n    progress: Progress = None")))
     parts.append(_function("plot", strand._TABLES["plot"], first="svg: str | PathLike[str]", extra=(
         "machine: str | PathLike[str] = ...,\n    mirror: bool = False,\n    order: bool = True,\n"
         "    progress: Progress = None")))

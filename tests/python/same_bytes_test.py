@@ -21,12 +21,15 @@ def test_every_generator_has_a_flat_sample():
 @pytest.mark.parametrize("path", flat_samples(), ids=lambda p: p.stem)
 def test_generator_function_gives_the_cli_bytes(path, tmp_path):
     job = json.loads(path.read_text())
+    # A sample's printheads by feature: --tools as text, the module takes the job file's dict.
+    tools = job.get("tools", {}).get("by_feature", {})
+    tool_flags = ["--tools", ",".join(f"{k}={v}" for k, v in tools.items())] if tools else []
     code, out = run_cli([job["generator"], *flags_of(job["params"]), "--machine", job["machine"],
-                         "-o", "cli.gcode"], tmp_path)
+                         *tool_flags, "-o", "cli.gcode"], tmp_path)
     assert code == 0, out
     function = getattr(strand, job["generator"].replace("-", "_"))
     params = {k.replace("-", "_"): v for k, v in job["params"].items()}
-    r = function(machine=job["machine"], **params)
+    r = function(machine=job["machine"], tools=job.get("tools"), **params)
     assert r.gcode == (tmp_path / "cli.gcode").read_text()
     assert r.text.splitlines()[1:] == out.splitlines()[1:]  # the summary, but the file name
 
@@ -86,3 +89,19 @@ def test_slice_gives_the_cli_bytes(args, kwargs, tmp_path):
     assert code == 0, out
     r = strand.slice(**kwargs)
     assert r.gcode == (tmp_path / "cli.gcode").read_text()
+
+
+def test_material_gives_the_cli_bytes(tmp_path, monkeypatch):
+    (tmp_path / "materials").mkdir()
+    (tmp_path / "materials" / "paste.json").write_text(json.dumps(
+        {"name": "paste", "nozzle_mm": 0.6, "measurements": ["m.json"],
+         "print": {"speed_mm_min": 320, "flow": 1.2, "layer_height_mm": 0.5}}))
+    monkeypatch.chdir(tmp_path)  # materials/ is found from the working directory, as the CLI's
+    flags = ["--nozzle", "0.6", "--gap", "1", "--size", "10x10", "--layers", "2"]
+    code, out = run_cli(["scaffold", *flags, "--machine", "deltawasp-2040-clay-ldm", "--material", "paste",
+                         "-o", "cli.gcode"], tmp_path)
+    assert code == 0, out
+    r = strand.scaffold(nozzle=0.6, gap=1, size="10x10", layers=2, machine="deltawasp-2040-clay-ldm",
+                        material="paste")
+    assert r.gcode == (tmp_path / "cli.gcode").read_text()
+    assert r.report["material"]["flow"] == 1.2
