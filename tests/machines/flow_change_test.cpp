@@ -1,12 +1,12 @@
 // Flow changes in the machine's words: the profile's pressure template, a pause in each
-// firmware's syntax, nothing on E-driven machines; and the profile's pressure_command checked.
+// firmware's syntax, nothing on E-driven machines (the profile's pressure_command is checked
+// in profile_test).
 #include "machines/flow_change.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "slicer/input_error.h"
 
 namespace strand::machines {
 namespace {
@@ -38,31 +38,6 @@ TEST(FlowChange, ThePressureTemplateTakesTheValueAndEDrivenMachinesNeedNoCommand
   const MachineProfile screw = load_profile("deltawasp-2040-clay-ldm");
   EXPECT_FALSE(flow_is_pressure(screw));
   EXPECT_EQ(flow_change_gcode(screw, 1.5, ""), "");
-}
-
-std::string error_of(const nlohmann::json& j) {
-  try {
-    profile_from_json(j, "machine test.json");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-TEST(FlowChange, AProfilesPressureCommandNeedsAPneumaticModelAndTheFlowPlaceholder) {
-  auto j = nlohmann::json::parse(R"({
-    "name": "t", "description": "d",
-    "kinematics": {"type": "cartesian", "min_mm": [0,0,0], "max_mm": [100,100,100]},
-    "firmware": {"flavour": "marlin", "arcs": true},
-    "deposition": {"model": "manual-valve", "pressure_command": ["M42 P5 S{flow}"]}})");
-  EXPECT_EQ(error_of(j), "");
-  EXPECT_EQ(profile_from_json(j, "t").deposition.pressure_command.size(), 1u);
-  j["deposition"]["pressure_command"] = {"M42 P5 S1"};
-  EXPECT_NE(error_of(j).find("deposition.pressure_command: \"M42 P5 S1\" lacks {flow}"), std::string::npos) << error_of(j);
-  j["deposition"]["pressure_command"] = {"M42 P5 S{flow}\nG1 Z-10"};
-  EXPECT_NE(error_of(j).find("pressure_command"), std::string::npos) << "a second line slipped in";
-  j["deposition"] = {{"model", "e-volumetric"}, {"mm3_per_e", 1.0}, {"pressure_command", {"M42 S{flow}"}}};
-  EXPECT_NE(error_of(j).find("only for valve or manual-valve"), std::string::npos) << error_of(j);
 }
 
 }  // namespace

@@ -104,5 +104,50 @@ TEST(Profiles, GrblWithEAxisIsRejected) {
   EXPECT_NE(error_of(j).find("GRBL has no E axis"), std::string::npos);
 }
 
+TEST(Profiles, APressureCommandNeedsAPneumaticModelAndTheFlowPlaceholder) {
+  auto j = minimal();
+  j["deposition"] = {{"model", "manual-valve"}, {"pressure_command", {"M42 P5 S{flow}"}}};
+  EXPECT_EQ(error_of(j), "");
+  EXPECT_EQ(profile_from_json(j, "t").deposition.pressure_command.size(), 1u);
+  j["deposition"]["pressure_command"] = {"M42 P5 S1"};
+  EXPECT_NE(error_of(j).find("deposition.pressure_command: \"M42 P5 S1\" lacks {flow}"), std::string::npos) << error_of(j);
+  j["deposition"]["pressure_command"] = {"M42 P5 S{flow}\nG1 Z-10"};
+  EXPECT_NE(error_of(j).find("pressure_command"), std::string::npos) << "a second line slipped in";
+  j["deposition"] = {{"model", "e-volumetric"}, {"mm3_per_e", 1.0}, {"pressure_command", {"M42 S{flow}"}}};
+  EXPECT_NE(error_of(j).find("only for valve or manual-valve"), std::string::npos) << error_of(j);
+}
+
+TEST(Profiles, ToolsAreCheckedByTheirIndexAndTheirChangeByFirmware) {
+  auto j = minimal();
+  j["tools"] = nlohmann::json::parse(R"([{"name": "a"}, {"name": "b", "offset_mm": [30, 0, -1], "nozzle_mm": 0.4,
+      "deposition": {"model": "valve", "on_gcode": ["M42 P7 S255"], "off_gcode": ["M42 P7 S0"]}}])");
+  ASSERT_EQ(error_of(j), "");
+  const auto p = profile_from_json(j, "t");
+  EXPECT_EQ(tool_count(p), 2);
+  EXPECT_EQ(tool_deposition(p, 1).model, DepositionModel::Valve);
+  EXPECT_EQ(tool_deposition(p, 0).model, DepositionModel::None) << "the machine's deposition";
+  EXPECT_EQ(tool_offset(p, 1), Vec3(30, 0, -1));
+  EXPECT_EQ(tool_count(profile_from_json(minimal(), "t")), 1);
+
+  j["tools"][1]["colour"] = "red";
+  j["tools"][0]["offset_mm"] = {1, 0, 0};
+  const std::string e = error_of(j);
+  EXPECT_NE(e.find("tools[1].colour: unknown key"), std::string::npos) << e;
+  j["tools"][1].erase("colour");
+  EXPECT_NE(error_of(j).find("tools[0].offset_mm: must be [0, 0, 0]"), std::string::npos) << error_of(j);
+  j["tools"][0].erase("offset_mm");
+  j["tools"][1]["deposition"].erase("on_gcode");
+  EXPECT_NE(error_of(j).find("tools[1]: deposition.on_gcode/off_gcode: missing"), std::string::npos) << error_of(j);
+  j["tools"] = nlohmann::json::array();
+  EXPECT_NE(error_of(j).find("tools = []: must be a list of 1 to 16 objects"), std::string::npos) << error_of(j);
+  auto grbl = minimal();
+  grbl["firmware"]["flavour"] = "grbl";
+  grbl["tools"] = nlohmann::json::parse(R"([{"name": "a"}, {"name": "b"}])");
+  EXPECT_NE(error_of(grbl).find("tool_change_gcode: missing (GRBL has no T command"), std::string::npos) << error_of(grbl);
+  auto lone = minimal();
+  lone["tool_change_gcode"] = {"T{tool}"};
+  EXPECT_NE(error_of(lone).find("tool_change_gcode: only with a tools list"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace strand::machines
