@@ -42,6 +42,7 @@ struct SliceArgs {
   std::map<std::string, CLI::Option*> options;
   std::string report;
   std::string threads;                // --threads, as given (checked by the job)
+  std::string tools;                  // --tools, as given (checked by the job)
   std::vector<std::string> previews;  // .png/.svg/.html/.glb with the mesh under the path
 };
 
@@ -94,6 +95,7 @@ int run_slice(SliceArgs a) {
   s.pattern = slicer::match_choice(s.pattern, names).value_or(s.pattern);
   a.settings.pattern_values = pattern_values(a);
   if (!a.threads.empty()) a.settings.threads = jobs::threads_from_text(a.threads);
+  if (!a.tools.empty()) a.settings.tools = a.tools;
   if (a.settings.output.empty()) {
     const std::string& input = a.settings.part.empty() ? a.settings.onto : a.settings.part;
     a.settings.output = input.empty() ? "slice.gcode" : output_from_input(input, ".gcode");
@@ -230,6 +232,9 @@ void add_slice_command(CLI::App& app, Action& action) {
   sub->add_option("--threads", a->threads,
                   "threads that cut, fill and plan the layers, 1 to 256 (default: every core); "
                   "the file is the same for any number");
+  sub->add_option("--tools", a->tools,
+                  "printheads of a multi-tool machine: by feature (wall=1,infill=0: perimeters in another ink) "
+                  "or cycled per layer (layers=0,1)");
   sub->callback([&action, a] { action = [a] { return run_slice(*a); }; });
 }
 

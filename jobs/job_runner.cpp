@@ -133,6 +133,18 @@ JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where) {
   return s;
 }
 
+post::ToolAssignment tools_for(const nlohmann::json& tools, const machines::MachineProfile& machine,
+                               const std::string& what) {
+  post::ToolAssignment a = post::tool_assignment_from_json(tools, what);
+  const int count = machines::tool_count(machine);
+  if (a.highest() >= count) {
+    throw InputError(what + " = " + (tools.is_string() ? tools.get<std::string>() : tools.dump()).substr(0, 80) + ": tool " +
+                     std::to_string(a.highest()) + " is not on machine " + machine.name + " (" + std::to_string(count) +
+                     " tool(s): 0 to " + std::to_string(count - 1) + ")");
+  }
+  return a;
+}
+
 namespace {
 
 struct Prepared {
@@ -174,13 +186,7 @@ Prepared prepare(const patterns::GeneratorSpec& generator, const nlohmann::json&
     p.options.flow = s.material.at("flow").get<double>();
   }
   if (!s.tools.is_null()) {
-    p.options.tools = post::tool_assignment_from_json(s.tools, "tools");
-    const int count = machines::tool_count(p.machine);
-    if (p.options.tools.highest() >= count) {
-      throw InputError("tools = " + (s.tools.is_string() ? s.tools.get<std::string>() : s.tools.dump()).substr(0, 80) +
-                       ": tool " + std::to_string(p.options.tools.highest()) + " is not on machine " + p.machine.name + " (" +
-                       std::to_string(count) + " tool(s): 0 to " + std::to_string(count - 1) + ")");
-    }
+    p.options.tools = tools_for(s.tools, p.machine, "tools");
   }
   return p;
 }
@@ -199,6 +205,7 @@ post::Produced produce_prepared(Prepared& p, const patterns::GeneratorSpec& gene
   slicer::progress_phase(s.progress, "checking");
   vet_produced(produced, p.machine, s.arc_tolerance_mm);
   if (!s.material.is_null()) produced.report["material"] = s.material;
+  if (!s.tools.is_null()) produced.report["tools"] = s.tools;
   return produced;
 }
 

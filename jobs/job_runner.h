@@ -52,6 +52,11 @@ struct JobSpec {
   std::string description;
 };
 
+// --tools text or a job file's "tools" checked against the machine: InputError "WHAT = ...:
+// tool N is not on machine M (K tool(s): 0 to K-1)" for a head it lacks.
+post::ToolAssignment tools_for(const nlohmann::json& tools, const machines::MachineProfile& machine,
+                               const std::string& what);
+
 // Checks the keys and the generator name; `where` prefixes messages ("job", "sweep.job").
 // Throws InputError naming the key path.
 JobSpec job_spec_from_json(const nlohmann::json& j, const std::string& where);

@@ -136,7 +136,7 @@ void check_part_fits(const slicer::Mesh& mesh, const machines::MachineProfile& m
 
 nlohmann::json slice_parameters(const SliceSettings& s, const patterns::RegionPattern& p) {
   nlohmann::json j = p.values;
-  if (!s.part.empty()) j["part"] = s.part;
+  if (!s.part.empty()) j["part"] = s.part_name.empty() ? s.part : s.part_name;
   if (!s.onto.empty()) j["onto"] = s.onto;
   j["pattern"] = s.pattern;
   j["perimeters"] = s.perimeters;
@@ -282,7 +282,10 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   po.phase = "filling layers, planning and writing G-code";
   po.keep_program = s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm;  // vet_produced reads it
   // Filled a few layers ahead on every thread, planned and written in layer order.
-  const post::PlanOptions options = post::plan_options_from(record, s.arc_tolerance_mm);
+  post::PlanOptions options = post::plan_options_from(record, s.arc_tolerance_mm);
+  if (!s.tools.is_null()) {
+    options.tools = tools_for(s.tools, machine, "slice.tools");
+  }
   post::LayerProducer producer(record, filled->layer_count(), machine, options, po);
   SliceLayerStats stats(pattern.nozzle_mm);
   // A layer with material its fill leaves empty (a rounded top narrower than a bead) gets
@@ -298,6 +301,7 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
       complete);
   stats.write(record.derived);
   r.produced = producer.finish();
+  if (!s.tools.is_null()) r.produced.report["tools"] = s.tools;
   check_not_empty(r.produced, s, size, pattern);
   r.toolpath = std::move(record);  // the layers went as they were written
   return r;
@@ -313,7 +317,10 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
   const slicer::Mesh substrate =
       slicer::place_mesh(slicer::read_mesh_file(s.onto), placement_of(s));
   const slicer::MeshSurface surface(substrate, s.onto);
-  const post::PlanOptions options = post::plan_options_from(r.toolpath, s.arc_tolerance_mm);
+  post::PlanOptions options = post::plan_options_from(r.toolpath, s.arc_tolerance_mm);
+  if (!s.tools.is_null()) {
+    options.tools = tools_for(s.tools, machine, "slice.tools");
+  }
   slicer::progress_phase(s.progress, "draping");
   slicer::MotionProgram program = post::plan_draped(r.toolpath, surface, machine, options);
   r.toolpath.parameters["onto"] = s.onto;

@@ -23,6 +23,8 @@ inline constexpr int kMaxSliceThreads = 256;
 
 struct SliceSettings {
   std::string part;                  // mesh file to fill (or empty with `onto`)
+  std::string part_name;             // recorded as the part instead of `part` (the workbench
+                                     // names its upload so), or empty
   std::string onto;                  // substrate mesh to lay the pattern on (or empty)
   std::string pattern = "scaffold";  // generator name
   nlohmann::json pattern_values = nlohmann::json::object();  // its flags as given (JSON form)
@@ -47,6 +49,9 @@ struct SliceSettings {
   // Threads that cut, fill and plan the layers, in [1, 256]; unset: every core. The bytes
   // written are the same for any number (jobs/slice_parallel.h).
   std::optional<int> threads;
+  // --tools: printheads by feature (wall=1,infill=0: perimeters in another ink) or cycled per
+  // layer (layers=0,1), as on every generator (postprocess/plan/tool_assignment.h); null: none.
+  nlohmann::json tools;
 };
 
 struct SliceResult {

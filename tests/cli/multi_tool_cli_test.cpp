@@ -96,6 +96,26 @@ TEST(MultiToolCli, NodesAndLigamentsInTwoHeadsWithTheirOffsetsAndTheirOwnE) {
   EXPECT_EQ(slurp(dir + "/j.gcode"), slurp(dir + "/t.gcode"));
 }
 
+// A sliced part's perimeters in one head's ink, its fill in the other's.
+TEST(MultiToolCli, SliceTakesToolsByFeature) {
+  const auto dir = fresh_dir("multi-tool-slice");
+  std::ofstream(dir + "/two-screws.json") << kTwoScrews;
+  const std::string mesh = std::string(STRAND_SOURCE_DIR) + "/samples/meshes/bone-plug.stl";
+  auto r = run_strand("slice " + mesh + " --pattern scaffold --nozzle 0.5 --gap 1 --perimeters 1 --machine two-screws.json"
+                      " --tools wall=1,infill=0 -o plug.gcode --report plug.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir + "/plug.json"))["tools"], "wall=1,infill=0");
+  const auto check = nlohmann::json::parse(run_strand("check plug.gcode --json", dir).out);
+  EXPECT_EQ(check["crossings"], 0);
+  for (const auto& layer : check["layers"]) {
+    ASSERT_EQ(layer["strands_by_tool"].size(), 2u) << layer.dump();
+    EXPECT_GE(layer["strands_by_tool"][1].get<int>(), 2) << "the outer and the hole's perimeter";
+  }
+  expect_input_error(run_strand("slice " + mesh + " --pattern scaffold --nozzle 0.5 --gap 1 --tools wall=1 -o x.gcode", dir),
+                     "slice.tools = wall=1: tool 1 is not on machine deltawasp-2040-clay");
+  EXPECT_FALSE(exists(dir + "/x.gcode"));
+}
+
 TEST(MultiToolCli, ALayerCycleAndTheRefusals) {
   const auto dir = fresh_dir("multi-tool-bad");
   std::ofstream(dir + "/two-screws.json") << kTwoScrews;
