@@ -131,6 +131,11 @@ class Writer {
 
   void preamble() {
     out_ += code("G21", "millimetres") + code("G90", "absolute XYZ");
+    // Heated or cooled heads start reaching their set points; each change waits for its own.
+    for (std::size_t k = 0; k < base_.tools.size(); ++k) {
+      const Tool& t = base_.tools[k];
+      if (t.temperature_c > 0) out_ += code("M104 T" + std::to_string(k) + " S" + fmt_fixed(t.temperature_c, 0), t.name);
+    }
     if (!any_e_) return;
     // Marlin: G90 also resets the E mode, so the E mode must come after it.
     out_ += relative_e_ ? code("M83", "relative E") : code("M82", "absolute E");
@@ -186,10 +191,15 @@ class Writer {
     close_flow();
     const auto k = static_cast<std::size_t>(std::clamp(tool, 0, static_cast<int>(base_.tools.size()) - 1));
     const Tool& t = base_.tools[k];
-    const std::vector<std::string> fallback = {"T{tool}"};
-    for (const auto& line : base_.tool_change_gcode.empty() ? fallback : base_.tool_change_gcode) {
-      out_ += replace_all(replace_all(line, "{tool}", std::to_string(k)), "{name}", t.name) + "\n";
-    }
+    auto lines = [&](const std::vector<std::string>& templates, std::size_t index) {
+      for (const auto& line : templates) {
+        out_ += replace_all(replace_all(line, "{tool}", std::to_string(index)), "{name}", base_.tools[index].name) + "\n";
+      }
+    };
+    if (tool_ >= 0) lines(base_.tools[static_cast<std::size_t>(tool_)].deselect_gcode, static_cast<std::size_t>(tool_));
+    if (t.temperature_c > 0) out_ += code("M109 T" + std::to_string(k) + " S" + fmt_fixed(t.temperature_c, 0), "wait for " + t.name);
+    lines(base_.tool_change_gcode.empty() ? std::vector<std::string>{"T{tool}"} : base_.tool_change_gcode, k);
+    lines(t.select_gcode, k);
     m_.deposition = t.deposition;
     e_words_ = m_.deposition.model == DepositionModel::EVolumetric || o_.viewer_e;
     retracted_ = false;

@@ -69,6 +69,9 @@ struct Tool {
   Vec3 offset_mm = Vec3::Zero();  // nozzle position minus tool 0's, mm (Strand moves by it)
   double nozzle_mm = 0.0;         // 0: not given
   Deposition deposition;
+  double temperature_c = 0.0;     // a heated or cooled head's set point; 0: none
+  std::vector<std::string> select_gcode;    // after a change to this head (prime, purge, wipe)
+  std::vector<std::string> deselect_gcode;  // before a change away from it (idle retract, pressure off)
 };
 
 struct Limits {

@@ -19,8 +19,8 @@ constexpr char kTwoScrews[] = R"({
   "kinematics": {"type": "cartesian", "min_mm": [0, 0, 0], "max_mm": [200, 200, 100], "part_center_mm": [100, 100]},
   "firmware": {"flavour": "marlin", "arcs": false},
   "deposition": {"model": "e-volumetric", "mm3_per_e": 1.0, "relative_e": true},
-  "tools": [{"name": "soft"},
-            {"name": "stiff", "offset_mm": [40, 0, -0.5],
+  "tools": [{"name": "soft", "deselect_gcode": ["M42 P9 S0 ; {name} idle"]},
+            {"name": "stiff", "offset_mm": [40, 0, -0.5], "temperature_c": 37, "select_gcode": ["M117 prime {name}"],
              "deposition": {"model": "e-volumetric", "mm3_per_e": 2.0, "relative_e": true}}]})";
 
 constexpr char kParams[] = "--nozzle 0.5 --cell 10 --cols 2 --rows 2 --layers 2 --grip 5";
@@ -70,6 +70,10 @@ TEST(MultiToolCli, NodesAndLigamentsInTwoHeadsWithTheirOffsetsAndTheirOwnE) {
     }
   }
   EXPECT_GE(changes, 2);
+  // The head warms from the start; a change to it waits for it, after the last head idles.
+  const std::string gcode = slurp(dir + "/t.gcode");
+  EXPECT_NE(gcode.find("M104 T1 S37 ; stiff\n"), std::string::npos);
+  EXPECT_NE(gcode.find("M42 P9 S0 ; soft idle\nM109 T1 S37 ; wait for stiff\nT1\nM117 prime stiff\n"), std::string::npos);
   // E per head is that head's ink over its own mm3 per E.
   EXPECT_NEAR(e[0], tools[0]["ink_volume_mm3"].get<double>() / 1.0, 0.01 * e[0]);
   EXPECT_NEAR(e[1], tools[1]["ink_volume_mm3"].get<double>() / 2.0, 0.01 * e[1]);
