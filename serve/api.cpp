@@ -98,24 +98,7 @@ json machines_json() {
   return {{"machines", list}};
 }
 
-json figures_of(const json& report) {
-  json f = json::object();
-  try {
-    const json& d = report.at("derived");
-    const json& t = report.at("totals");
-    f["derived"] = d;
-    f["porosity"] = d.value("porosity", json());
-    f["ink_volume_ml"] = t.value("ink_volume_ml", json());
-    f["time_s"] = t.value("time_naive_s", json());
-    f["layers"] = t.value("layers", json());
-    f["strands_per_layer"] = report.value("strands_per_layer", json());
-  } catch (const std::exception&) {  // a curved job's report: the summary says it all
-  }
-  return f;
-}
-
 }  // namespace
-
 
 namespace {
 
@@ -300,6 +283,7 @@ Response Api::State::route(const Request& r) {
   if (get && r.path == "/") return page("design.html");
   if (get && r.path == "/gallery") return page("gallery.html");
   if (r.path == "/draw" || r.path == "/api/plot") return route_plot(r);
+  if (r.path == "/slice" || r.path == "/api/slice") return route_slice(r);
   if (is_queue_path(r.path)) return route_queue(r);
   if (r.path == "/api/sweeps" || r.path.rfind("/api/sweeps/", 0) == 0) return route_sweeps(r);
   if (p.size() < 2 || p[0] != "api") throw HttpError(404, "no such page: " + r.path.substr(0, 200));

@@ -15,7 +15,8 @@ namespace strand::serve {
 
 // Largest request body accepted (a job file's JSON is a few hundred bytes).
 inline constexpr std::size_t kMaxBodyBytes = 1 << 20;
-// Largest multipart upload to POST /api/plot (the drawing or image and the form's fields).
+// Largest multipart upload to POST /api/plot and /api/slice (the drawing, image or mesh and
+// the form's fields).
 inline constexpr std::size_t kMaxUploadBytes = 16 << 20;
 // Longest saved-job name, in bytes.
 inline constexpr std::size_t kMaxNameBytes = 200;

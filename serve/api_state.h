@@ -49,6 +49,8 @@ bool same_origin(const Request& r);
 bool equal_constant_time(const std::string& a, const std::string& b);
 std::string cookie(const Request& r, const std::string& name);
 std::string content_type_for(const std::string& name);
+// A job report's headline figures (porosity, ink, time, layers, strands per layer).
+nlohmann::json figures_of(const nlohmann::json& report);
 
 struct Api::State {
   ApiOptions options;
@@ -73,6 +75,8 @@ struct Api::State {
   Response route_queue(const Request& r);
   // GET /draw and POST /api/plot (plot_api.cpp).
   Response route_plot(const Request& r);
+  // GET /slice and POST /api/slice (slice_api.cpp).
+  Response route_slice(const Request& r);
   // POST /api/sweeps, GET /api/sweeps/{id}/files/... (sweep_api.cpp).
   Response route_sweeps(const Request& r);
   Response run(const Request& r, bool save);

@@ -19,6 +19,22 @@ Api::State::State(const ApiOptions& o, const fs::path& d)
 
 Api::State::~State() { queue.reset(); }
 
+json figures_of(const json& report) {
+  json f = json::object();
+  try {
+    const json& d = report.at("derived");
+    const json& t = report.at("totals");
+    f["derived"] = d;
+    f["porosity"] = d.value("porosity", json());
+    f["ink_volume_ml"] = t.value("ink_volume_ml", json());
+    f["time_s"] = t.value("time_naive_s", json());
+    f["layers"] = t.value("layers", json());
+    f["strands_per_layer"] = report.value("strands_per_layer", json());
+  } catch (const std::exception&) {  // a curved job's report: the summary says it all
+  }
+  return f;
+}
+
 std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
 
 Response json_response(int status, const json& j) {

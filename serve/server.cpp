@@ -53,7 +53,8 @@ Server::Server(const ServeOptions& options) : impl_(std::make_unique<Impl>(check
   httplib::Server& h = impl_->http;
   const int threads = std::max(impl_->options.http_threads, 1);
   h.new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
-  // Uploads to POST /api/plot may be larger; Api::handle holds other bodies to kMaxBodyBytes.
+  // Uploads to POST /api/plot and /api/slice may be larger; Api::handle holds other bodies to
+  // kMaxBodyBytes.
   h.set_payload_max_length(kMaxUploadBytes);
   h.set_read_timeout(10, 0);
   h.set_write_timeout(10, 0);
@@ -93,7 +94,8 @@ Server::Server(const ServeOptions& options) : impl_(std::make_unique<Impl>(check
   // The library's own refusals (malformed request line, body or URI too large) as JSON.
   h.set_error_handler([](const httplib::Request& req, httplib::Response& res) {
     if (!res.body.empty()) return;
-    const std::size_t limit = req.path == "/api/plot" ? kMaxUploadBytes : kMaxBodyBytes;
+    const bool upload = req.path == "/api/plot" || req.path == "/api/slice";
+    const std::size_t limit = upload ? kMaxUploadBytes : kMaxBodyBytes;
     const std::string why = res.status == 413   ? "request body larger than " + std::to_string(limit) + " bytes"
                             : res.status == 414 ? std::string("request URI too long")
                             : res.status == 404 ? std::string("not found")
