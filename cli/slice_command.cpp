@@ -12,7 +12,6 @@
 #include "cli/output_path.h"
 #include "cli/progress_bar.h"
 #include "jobs/slice_job.h"
-#include "jobs/slice_layer_stats.h"
 #include "jobs/job_runner.h"
 #include "machines/profile.h"
 #include "patterns/region_pattern.h"
@@ -123,44 +122,7 @@ int run_slice(SliceArgs a) {
   slicer::progress_phase(progress.get(), "writing files");
   out.commit();
   if (progress) progress->finish();
-  std::cout << r.produced.summary;
-  const auto& d = r.toolpath.derived;
-  if (d.contains("pattern_strands_per_layer")) {
-    int most = 0;
-    for (const auto& s : d.at("pattern_strands_per_layer")) most = std::max(most, s.get<int>());
-    std::cout << "  pattern        " << a.settings.pattern << ": at most " << most
-              << " pattern strand(s) per layer, " << a.settings.perimeters << " perimeter(s)\n";
-  }
-  if (d.contains("thin_beads") && d.at("thin_beads").at("count").get<int>() > 0) {
-    char line[96];
-    std::snprintf(line, sizeof line, "%d centre line(s), %.3f mm",
-                  d.at("thin_beads").at("count").get<int>(),
-                  d.at("thin_beads").at("length_mm").get<double>());
-    std::cout << "  thin beads     " << line << "\n";
-  }
-  for (const std::string& line : jobs::layer_summary_lines(d)) std::cout << line << "\n";
-  if (d.contains("substrate")) {
-    const auto& sub = d.at("substrate");
-    char line[256];
-    std::snprintf(line, sizeof line,
-                  "%s, 3D/uv area ratio %.3f to %.3f, conformal stretch up to %.3f",
-                  sub.at("uv_source").get<std::string>().c_str(),
-                  sub.at("area_ratio_3d_to_uv")[0].get<double>(),
-                  sub.at("area_ratio_3d_to_uv")[1].get<double>(),
-                  sub.at("conformal_stretch_max").get<double>());
-    std::cout << "  substrate      " << a.settings.onto << ": " << line << "\n";
-  }
-  for (const auto& c : r.part.changes) std::cout << "  repaired       " << c << "\n";
-  if (r.scale != 1.0) {
-    char line[64];
-    std::snprintf(line, sizeof line, "%.6g", r.scale);
-    std::cout << "  scale          " << line << "\n";
-  }
-  for (const auto& n : r.notes) {
-    const bool skip = n.rfind("skipped", 0) == 0;
-    std::cout << (skip ? "  skipped        " : "  note           ") << (skip ? n.substr(8) : n)
-              << "\n";
-  }
+  std::cout << jobs::slice_summary_text(r, a.settings);
   return 0;
 }
 

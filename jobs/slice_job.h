@@ -72,6 +72,9 @@ double scale_to_fit(const slicer::Vec3& size_mm, const std::string& box);
 // With `onto`, the pattern is the generator's own specimen (its extent flags apply) draped
 // over the substrate mesh for a 3-axis machine (postprocess/plan/drape.h).
 SliceResult produce_slice(const SliceSettings& settings);
+// What `strand slice` prints after the part's size (every front end shows the same): the
+// job's summary, then the pattern, thin beads, layer, substrate, repair, scale and note lines.
+std::string slice_summary_text(const SliceResult& r, const SliceSettings& s);
 
 // Throws InputError naming slice.threads unless unset or in [1, kMaxSliceThreads].
 void check_threads(const std::optional<int>& threads);

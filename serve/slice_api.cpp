@@ -7,7 +7,6 @@
 #include <nlohmann/json.hpp>
 
 #include "jobs/slice_job.h"
-#include "jobs/slice_layer_stats.h"
 #include "jobs/sweep_check.h"
 #include "jobs/sweep_runner.h"
 #include "machines/profile.h"
@@ -41,37 +40,6 @@ std::string fixed3(const char* format, double a, double b, double c) {
   return line;
 }
 
-// What `strand slice` prints after the part's size: the job's summary, then the pattern,
-// thin beads, layer, substrate, repair, scale and note lines, in the CLI's words.
-std::string summary_text(const jobs::SliceResult& r, const jobs::SliceSettings& s) {
-  std::string out = r.produced.summary;
-  const json& d = r.toolpath.derived;
-  if (d.contains("pattern_strands_per_layer")) {
-    int most = 0;
-    for (const auto& n : d.at("pattern_strands_per_layer")) most = std::max(most, n.get<int>());
-    out += "  pattern        " + s.pattern + ": at most " + std::to_string(most) + " pattern strand(s) per layer, " +
-           std::to_string(s.perimeters) + " perimeter(s)\n";
-  }
-  if (d.contains("thin_beads") && d.at("thin_beads").at("count").get<int>() > 0) {
-    char line[96];
-    std::snprintf(line, sizeof line, "%d centre line(s), %.3f mm", d.at("thin_beads").at("count").get<int>(),
-                  d.at("thin_beads").at("length_mm").get<double>());
-    out += std::string("  thin beads     ") + line + "\n";
-  }
-  for (const std::string& line : jobs::layer_summary_lines(d)) out += line + "\n";
-  for (const auto& c : r.part.changes) out += "  repaired       " + c + "\n";
-  if (r.scale != 1.0) {
-    char line[64];
-    std::snprintf(line, sizeof line, "%.6g", r.scale);
-    out += std::string("  scale          ") + line + "\n";
-  }
-  for (const auto& n : r.notes) {
-    const bool skip = n.rfind("skipped", 0) == 0;
-    out += (skip ? "  skipped        " + n.substr(8) : "  note           " + n) + "\n";
-  }
-  return out;
-}
-
 // Runs on a worker: the upload written as part.EXT, sliced, and the G-code, report and
 // previews (the mesh drawn under the paths in the HTML one, as `--preview` draws it) beside it.
 json slice_into(const fs::path& d, std::int64_t id, const SliceForm& f) {
@@ -92,7 +60,7 @@ json slice_into(const fs::path& d, std::int64_t id, const SliceForm& f) {
   }
   slicer::write_file_atomic((d / s.output).string(), r.produced.gcode);
   slicer::write_file_atomic((d / "report.json").string(), slicer::dump_json(r.produced.report) + "\n");
-  json result = {{"summary", without(part_line + summary_text(r, s), d.string() + "/")},
+  json result = {{"summary", without(part_line + jobs::slice_summary_text(r, s), d.string() + "/")},
                  {"report", r.produced.report},
                  {"figures", figures_of(r.produced.report)},
                  {"check", jobs::sweep_check_summary(r.produced.gcode, s.machine)}};
