@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "jobs/ink_profile.h"
+#include "slicer/params.h"
 
 namespace strand::cli {
 
@@ -28,8 +29,20 @@ void add_calibrate_command(CLI::App& app, Action& action) {
                 << "  width = " << m.at("a") << " * flow^" << m.at("p") << " * speed^" << m.at("q")
                 << " mm (speed in mm/min), rms " << m.at("rms_mm") << " mm\n"
                 << "  nozzle-wide bead (" << p.at("nozzle_mm") << " mm): speed " << pr.at("speed_mm_min")
-                << " mm/min, flow " << pr.at("flow") << ", layer height " << pr.at("layer_height_mm") << " mm\n"
-                << "  profile        " << *output << "\n";
+                << " mm/min, flow " << pr.at("flow") << ", layer height " << pr.at("layer_height_mm") << " mm\n";
+      // From the fusion and collapse measurements, when there were any.
+      if (!p.at("min_spacing_without_fusion_mm").is_null()) {
+        std::cout << "  filaments stay separate from "
+                  << slicer::short_number(p.at("min_spacing_without_fusion_mm").get<double>()) << " mm apart\n";
+      }
+      if (const auto& gap = p.at("min_gap_without_collapse_mm"); !gap.is_null()) {
+        if (gap.get<double>() > 0) {
+          std::cout << "  spans gaps up to " << slicer::short_number(gap.get<double>()) << " mm without collapse\n";
+        } else {
+          std::cout << "  spans no gap without collapse\n";
+        }
+      }
+      std::cout << "  profile        " << *output << "\n";
       return 0;
     };
   });

@@ -1,5 +1,5 @@
-// `strand measure PHOTO --test lines|pore|fusion --job REPORT.json`: flags and printing; the work is in
-// postprocess/measure/.
+// `strand measure PHOTO --test lines|pore|fusion|collapse --job REPORT.json`: flags and
+// printing; the work is in postprocess/measure/.
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -36,8 +36,10 @@ int run_measure(const MeasureArgs& a) {
 void add_measure_command(CLI::App& app, Action& action) {
   auto a = std::make_shared<MeasureArgs>();
   CLI::App* sub = app.add_subcommand("measure", "measure a photo of a printed ink test against its job report");
-  sub->add_option("photo", a->photo, "photo of the print (PNG or JPEG, all four marks in view)")->required();
-  sub->add_option("--test", a->test, "which test the photo shows: lines, pore or fusion (collapse: planned)")
+  sub->add_option("photo", a->photo,
+                  "photo of the print (PNG or JPEG; all four marks in view, or for collapse the pillars from the side)")
+      ->required();
+  sub->add_option("--test", a->test, "which test the photo shows: lines, pore, fusion or collapse")
       ->required();
   sub->add_option("--job", a->job, "the --report JSON written when the test was generated")->required();
   sub->add_option("-o,--output", a->output, "measurements JSON (default PHOTO-stem.measure.json)");

@@ -102,7 +102,7 @@ nlohmann::json ink_profile(const std::string& name, const std::vector<nlohmann::
                            {"rms_mm", round_to(m.rms_mm, 5)}, {"points", m.points}}},
           {"print", {{"speed_mm_min", round_to(speed, 1)}, {"flow", round_to(flow, 3)},
                      {"layer_height_mm", round_to(layer_height, 4)}}},
-          // From the collapse test (not measured yet) and the fusion test (calibrate_files).
+          // From the collapse and fusion tests' measurements (calibrate_files).
           {"min_gap_without_collapse_mm", nullptr},
           {"min_spacing_without_fusion_mm", nullptr},
           {"measurements", sources}};
@@ -112,6 +112,7 @@ nlohmann::json calibrate_files(const std::vector<std::string>& paths, const std:
   if (paths.empty()) throw InputError("calibrate: give at least one measurement file (strand measure output)");
   std::vector<nlohmann::json> ms;
   nlohmann::json closest_separate = nullptr;  // the widest over the fusion prints: safe on all
+  nlohmann::json spanned = nullptr;           // the narrowest over the collapse prints: safe on all
   for (const auto& p : paths) {
     if (std::filesystem::weakly_canonical(p) == std::filesystem::weakly_canonical(out_path)) {
       throw InputError("calibrate.output = " + out_path + ": would overwrite a measurement file");
@@ -122,8 +123,15 @@ nlohmann::json calibrate_files(const std::vector<std::string>& paths, const std:
       if (v.is_number() && (closest_separate.is_null() || v.get<double>() > closest_separate.get<double>())) closest_separate = v;
       continue;
     }
+    if (j.is_object() && j.value("test", "") == "collapse" && j.contains("widest_spanned_gap_mm")) {
+      const auto& v = j.at("widest_spanned_gap_mm");
+      const double gap = v.is_number() ? v.get<double>() : 0.0;  // null: not even the narrowest gap spanned
+      if (spanned.is_null() || gap < spanned.get<double>()) spanned = gap;
+      continue;
+    }
     if (!j.is_object() || j.value("test", "") != "lines" || !j.contains("lines") || !j.contains("nozzle_mm")) {
-      throw InputError("calibrate.measurement = " + p + ": not a `strand measure --test lines` output (nor a --test fusion one)");
+      throw InputError("calibrate.measurement = " + p +
+                       ": not a `strand measure --test lines` output (nor a --test fusion or collapse one)");
     }
     ms.push_back(std::move(j));
   }
@@ -131,6 +139,7 @@ nlohmann::json calibrate_files(const std::vector<std::string>& paths, const std:
   const std::string name = std::filesystem::path(out_path).stem().string();
   nlohmann::json profile = ink_profile(name, ms, paths);
   profile["min_spacing_without_fusion_mm"] = closest_separate;
+  profile["min_gap_without_collapse_mm"] = spanned;
   slicer::write_file_atomic(out_path, profile.dump(2) + "\n");
   return profile;
 }

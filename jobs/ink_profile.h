@@ -35,8 +35,14 @@ nlohmann::json ink_profile(const std::string& name, const std::vector<nlohmann::
                            const std::vector<std::string>& sources);
 
 // Reads the measurement files, fits, writes the profile atomically to `out_path`; returns it.
-// Fusion measurements among them set min_spacing_without_fusion_mm (the widest of their
-// closest separate spacings); at least one lines measurement is needed for the fit.
+// At least one lines measurement is needed for the fit. Among the others:
+//  - fusion measurements set min_spacing_without_fusion_mm: the widest of their closest
+//    separate spacings, so filaments that far apart stayed separate on every print;
+//  - collapse measurements set min_gap_without_collapse_mm, the gap the ink spans without
+//    collapse: per print its widest_spanned_gap_mm (the widest gap that spans, Cf >= 90 %,
+//    with every narrower gap spanning too), and the smallest of these over the prints, so
+//    every print spanned it; 0 when a print spanned not even its narrowest gap.
+// Without such measurements the key is null (not measured).
 nlohmann::json calibrate_files(const std::vector<std::string>& paths, const std::string& out_path);
 
 // A profile by name: NAME.json in ./materials, then in the user's

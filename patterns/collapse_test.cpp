@@ -111,6 +111,7 @@ std::unique_ptr<slicer::LayerSource> collapse_test_layers(const CollapseTestPara
                {"layer_height_mm", h},
                {"footprint_mm", {2 * mx + p.fiducial_mm, 2 * my + p.fiducial_mm}},
                {"height_mm", p.layers * h},
+               {"pillar_mm", side},
                {"pillar_height_mm", (p.layers - 1) * h},
                {"filament_z_mm", p.layers * h},
                {"gaps", gaps},

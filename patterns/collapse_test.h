@@ -26,8 +26,8 @@ struct CollapseTestParams {
 // Layers centred on (0, 0): per pillar layer one serpentine stroke per pillar (0/90
 // alternately), then the filament along y = 0 over every pillar. The record's derived keys:
 // "test" = "collapse", "gaps" (index, gap_mm, the span start_mm [x, 0] to end_mm [x, 0]
-// between the pillars' faces), "filament_z_mm", "pillar_height_mm", "fiducials", "nozzle_mm",
-// "layer_height_mm".
+// between the pillars' faces), "pillar_mm" (their side), "filament_z_mm", "pillar_height_mm",
+// "fiducials", "nozzle_mm", "layer_height_mm".
 std::unique_ptr<slicer::LayerSource> collapse_test_layers(const CollapseTestParams& p);
 
 const slicer::ParamTable& collapse_test_table();

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <utility>
 
+#include "postprocess/measure/measure_collapse.h"
 #include "postprocess/measure/measure_fusion.h"
 #include "postprocess/measure/measure_lines.h"
 #include "postprocess/measure/measure_pores.h"
@@ -15,13 +16,14 @@ namespace strand::post::measure {
 
 namespace {
 
-constexpr char kTests[] = "lines, pore or fusion";
+constexpr char kTests[] = "lines, pore, fusion or collapse";
+
+bool known(const std::string& test) {
+  return test == "lines" || test == "pore" || test == "fusion" || test == "collapse";
+}
 
 void check_test(const std::string& test, const nlohmann::json& report) {
-  if (test == "collapse") {
-    throw InputError("measure.test = collapse: not measured yet (the sag needs a side view); measure lines, pore or fusion");
-  }
-  if (test != "lines" && test != "pore" && test != "fusion") {
+  if (!known(test)) {
     throw InputError("measure.test = " + test + ": must be " + kTests);
   }
   const auto& d = report.is_object() ? report.value("derived", nlohmann::json::object()) : nlohmann::json();
@@ -39,12 +41,13 @@ Measured measure_test(const cv::Mat& photo, const std::string& test, const nlohm
   check_test(test, report);
   if (test == "pore") return measure_pores(photo, report, what);
   if (test == "fusion") return measure_fusion(photo, report, what);
+  if (test == "collapse") return measure_collapse(photo, report, what);
   return lines_measured(measure_lines(photo, report, what));
 }
 
 Measured measure_files(const std::string& photo_path, const std::string& test, const std::string& report_path,
                        const std::string& out_json, const std::string& out_png) {
-  if (test != "lines" && test != "pore" && test != "fusion") check_test(test, nullptr);
+  if (!known(test)) check_test(test, nullptr);
   // The outputs never replace an input (say -o photo.json beside photo.png).
   const auto same = [](const std::string& a, const std::string& b) {
     return std::filesystem::weakly_canonical(a) == std::filesystem::weakly_canonical(b);

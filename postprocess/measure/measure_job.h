@@ -1,5 +1,5 @@
-// `strand measure PHOTO --test lines|pore|fusion --job REPORT.json`: the test chosen, the
-// photo and report read (bounded), measured, and the results written.
+// `strand measure PHOTO --test lines|pore|fusion|collapse --job REPORT.json`: the test chosen,
+// the photo and report read (bounded), measured, and the results written.
 #pragma once
 
 #include <string>
@@ -8,9 +8,9 @@
 
 namespace strand::post::measure {
 
-// Measures a decoded photo against a report for `test` (lines, pore or fusion). InputError
-// "measure.test = T: ..." for an unknown test, for collapse (not measured yet), or when the
-// report says it is of another test.
+// Measures a decoded photo against a report for `test` (lines, pore, fusion or collapse).
+// InputError "measure.test = T: ..." for an unknown test, or when the report says it is of
+// another test.
 Measured measure_test(const cv::Mat& photo, const std::string& test, const nlohmann::json& report,
                       const std::string& what);
 

@@ -1,5 +1,6 @@
 // The pore, fusion and collapse tests through the `strand` binary: generated for every flat
-// printer, each passes `strand check` without a crossing; and their one-line refusals.
+// printer, each passes `strand check` without a crossing; their sample photos measured and
+// calibrated; and their one-line refusals.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -55,6 +56,36 @@ TEST(InkTestsCli, SamplePhotosMeasuredAndTheFusionSpacingCalibrated) {
   EXPECT_DOUBLE_EQ(profile["min_spacing_without_fusion_mm"].get<double>(), 1.2);
   EXPECT_EQ(profile["measurements"], nlohmann::json::array({"lm-m.json", "fm.json"}));
   expect_input_error(run_strand("calibrate fm.json -o ink2.json", dir), "needs at least one `strand measure --test lines` output");
+}
+
+// The collapse sample photo (a synthetic side view, sags of 0, 0.05, 0.2, 1.2 and 20 mm drawn:
+// Cf 100, 98.6, 94.4, 66.7 and 3.1 %) measured through the binary, and the gap it spans in
+// the profile; a photo from above refused.
+TEST(InkTestsCli, CollapseSamplePhotoMeasuredAndTheSpannedGapCalibrated) {
+  const auto dir = fresh_dir("ink-tests-collapse");
+  const std::string ink = std::string(STRAND_SOURCE_DIR) + "/samples/ink/";
+  ASSERT_EQ(run_strand("collapse-test --nozzle 0.6 --report ct.json -o ct.gcode", dir).exit_code, 0);
+  auto r = run_strand("measure " + ink + "collapse-test-photo.jpg --test collapse --job ct.json -o cm.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("5 gaps"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("widest spanned gap 4.000 mm"), std::string::npos) << r.out;
+  EXPECT_TRUE(exists(dir + "/cm.png"));
+  const auto cm = nlohmann::json::parse(slurp(dir + "/cm.json"));
+  const double truth[] = {100.0, 98.6, 94.4, 66.7, 3.1};
+  for (std::size_t k = 0; k < 5; ++k) {
+    EXPECT_NEAR(cm["gaps"][k]["collapse_area_factor_pct"].get<double>(), truth[k], 2.0) << k;
+  }
+  EXPECT_EQ(cm["widest_spanned_gap_mm"], 4.0);
+
+  ASSERT_EQ(run_strand("line-matrix --nozzle 0.6 --report lm.json -o lm.gcode", dir).exit_code, 0);
+  ASSERT_EQ(run_strand("measure " + ink + "line-matrix-photo.jpg --test lines --job lm.json -o lm-m.json", dir).exit_code, 0);
+  r = run_strand("calibrate lm-m.json cm.json -o ink.json", dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("spans gaps up to 4 mm without collapse"), std::string::npos) << r.out;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(slurp(dir + "/ink.json"))["min_gap_without_collapse_mm"].get<double>(), 4.0);
+  expect_input_error(run_strand("measure " + ink + "line-matrix-photo.jpg --test collapse --job ct.json -o x.json", dir),
+                     "a view from above");
+  EXPECT_FALSE(exists(dir + "/x.json"));
 }
 
 TEST(InkTestsCli, BadInputIsOneLineAndWritesNothing) {
