@@ -1,8 +1,8 @@
 // The workbench's slicing (serve/slice_api.h) over real HTTP on 127.0.0.1: POST /api/slice
 // against `strand slice` byte for byte (an STL and a 3MF with defects), its refusals (400
 // with the CLI's line, 413 past the upload bound, 403 from another site) leaving nothing
-// saved, client file names that never become paths, the navigation bar of every page, and
-// the slice page driven in Chromium (selenium).
+// saved, client file names that never become paths, the navigation bar of every page, the
+// slice page driven in Chromium (selenium) and every page's first look at two window sizes.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -257,6 +257,19 @@ TEST_F(SliceApiTest, EveryPageLinksSliceAndQueue) {
     EXPECT_NE(r.body.find("href=\"/slice\""), std::string::npos) << page;
     EXPECT_TRUE(r.body.find("href=\"/queue\"") != std::string::npos || std::string(page) == "/queue") << page;
   }
+}
+
+// First impressions (tests/serve/browser/first_look.py): every page opened fresh at 1366x768
+// and on a 390 px phone shows its example (the design page the thesis scaffold, generated and
+// checked ok) without an error, no wider than the window, its bar, form and result apart, and
+// a bar that links every page.
+TEST_F(SliceApiTest, BrowserFirstLookAtEveryPage) {
+  const auto r = strand::testing::run_browser_script("tests/serve/browser/first_look.py", url("/"), dir_);
+  if (r.exit_code == 77) GTEST_SKIP() << "python3-selenium or chromium-driver not installed";
+  ASSERT_EQ(r.exit_code, 0) << r.log << r.out;
+  for (const char* page : {"design", "slice", "draw", "gallery", "queue"})
+    for (const char* size : {"wide", "phone"})
+      EXPECT_TRUE(fs::exists(dir_ + "/workbench-" + page + "-" + size + ".png")) << page << " " << size;
 }
 
 // The slice page in Chromium: the bone plug chosen in the file input and sliced with the
