@@ -225,13 +225,7 @@ Response Api::State::run(const Request& r, bool save) {
   const std::string ext = machine.robot.enabled ? ".csv" : ".gcode";
   if (!options.run_jobs) return json_response(200, {{"checked", true}});
 
-  const std::int64_t id = store.insert(save, name, dump(j));
-  std::error_code ec;
-  fs::create_directories(job_dir(id), ec);
-  if (ec) {
-    drop_job(id);
-    throw HttpError(500, "cannot create the job's directory (" + ec.message() + ")");
-  }
+  const std::int64_t id = new_job(save, name, dump(j));
   auto promise = std::make_shared<std::promise<json>>();
   std::future<json> done = promise->get_future();
   const bool queued = pool.submit([this, id, spec, ext, promise] {

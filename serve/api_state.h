@@ -70,6 +70,19 @@ struct Api::State {
     std::filesystem::remove_all(job_dir(id), ec);
   }
 
+  // A new job's row (kept in the gallery when `save`) and its folder; HttpError 500 with
+  // nothing left behind when the folder cannot be made.
+  std::int64_t new_job(bool save, const std::string& name, const std::string& job) {
+    const std::int64_t id = store.insert(save, name, job);
+    std::error_code ec;
+    std::filesystem::create_directories(job_dir(id), ec);
+    if (ec) {
+      drop_job(id);
+      throw HttpError(500, "cannot create the job's directory (" + ec.message() + ")");
+    }
+    return id;
+  }
+
   Response route(const Request& r);
   // GET /queue, /api/ports, /api/queue..., /api/events (queue_api.cpp).
   Response route_queue(const Request& r);

@@ -219,14 +219,8 @@ Response Api::State::route_plot(const Request& r) {
   const json job = {
       {"generator", "plot"}, {"machine", f.machine}, {"params", f.fields}, {"input", f.input}};
   const bool save = !f.name.empty();
-  const std::int64_t id = store.insert(save, f.name, dump(job));
+  const std::int64_t id = new_job(save, f.name, dump(job));
   const fs::path d = job_dir(id);
-  std::error_code ec;
-  fs::create_directories(d, ec);
-  if (ec) {
-    drop_job(id);
-    throw HttpError(500, "cannot create the job's directory (" + ec.message() + ")");
-  }
   // The worker records the result itself, so a plot that outlasts the wait still finishes.
   run_and_wait(
       pool, id, [this, id] { drop_job(id); },

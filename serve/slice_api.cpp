@@ -121,14 +121,8 @@ Response Api::State::route_slice(const Request& r) {
   if (!options.run_jobs) return json_response(200, {{"checked", true}});
 
   json job = {{"generator", "slice"}, {"machine", f.settings.machine}, {"params", f.fields}, {"input", f.input}};
-  const std::int64_t id = store.insert(true, f.name, dump(job));
+  const std::int64_t id = new_job(true, f.name, dump(job));
   const fs::path d = job_dir(id);
-  std::error_code ec;
-  fs::create_directories(d, ec);
-  if (ec) {
-    drop_job(id);
-    throw HttpError(500, "cannot create the job's directory (" + ec.message() + ")");
-  }
   // The worker records the result itself, so a slice that outlasts the wait still finishes.
   run_and_wait(
       pool, id, [this, id] { drop_job(id); },
