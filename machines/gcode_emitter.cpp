@@ -403,26 +403,6 @@ class Writer {
 
 }  // namespace
 
-// The nearest honest PrusaSlicer role (docs/checking-gcode.md has the table and the why):
-// nothing is called "Top", "Overhang" or "External" unless it is. A link lies outside the
-// part and is sacrificial, as a skirt (PrusaSlicer's draft shield repeats it every layer).
-std::string viewer_role(Feature f) {
-  switch (f) {
-    case Feature::Infill: return "Solid infill";
-    case Feature::Wall: return "Perimeter";
-    case Feature::Ligament: return "Internal infill";
-    case Feature::Node:
-      return "Perimeter";
-    case Feature::Grip:
-      return "Solid infill";
-    case Feature::Frame:
-      return "External perimeter";
-    case Feature::Link: return "Skirt/Brim";
-    case Feature::Pen: return "Perimeter";
-  }
-  return "Custom";
-}
-
 std::string emit_gcode(const slicer::MotionProgram& program, const MachineProfile& machine,
                        const EmitOptions& options) {
   std::string out;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "machines/gcode_format.h"
 #include "machines/profile.h"
 #include "slicer/motion.h"
 #include "slicer/progress_listener.h"
@@ -52,7 +53,5 @@ class GcodeBodyWriter {
   std::unique_ptr<Impl> impl_;
 };
 
-// PrusaSlicer's viewer knows only its own role names in ;TYPE:; this maps ours onto them.
-std::string viewer_role(slicer::Feature f);
 
 }  // namespace strand::machines

@@ -68,4 +68,24 @@ std::string comment_text(std::string text, bool parentheses) {
   return text;
 }
 
+// The nearest honest PrusaSlicer role (docs/checking-gcode.md has the table and the why):
+// nothing is called "Top", "Overhang" or "External" unless it is. A link lies outside the
+// part and is sacrificial, as a skirt (PrusaSlicer's draft shield repeats it every layer).
+std::string viewer_role(slicer::Feature f) {
+  switch (f) {
+    case slicer::Feature::Infill: return "Solid infill";
+    case slicer::Feature::Wall: return "Perimeter";
+    case slicer::Feature::Ligament: return "Internal infill";
+    case slicer::Feature::Node:
+      return "Perimeter";
+    case slicer::Feature::Grip:
+      return "Solid infill";
+    case slicer::Feature::Frame:
+      return "External perimeter";
+    case slicer::Feature::Link: return "Skirt/Brim";
+    case slicer::Feature::Pen: return "Perimeter";
+  }
+  return "Custom";
+}
+
 }  // namespace strand::machines

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <string>
 
+#include "slicer/toolpath.h"
+
 namespace strand::machines {
 
 // Room fixed_chars needs: sign, 15 integer digits, point, 9 decimals, or the long form of
@@ -24,5 +26,8 @@ inline std::string fmt_feed(double mm_per_min) { return fmt_fixed(mm_per_min, 0)
 // new, uncommented line: G-code injection) become spaces; with `parentheses` false (GRBL's
 // "( ... )" comments cannot nest) ( and ) become [ and ].
 std::string comment_text(std::string text, bool parentheses = true);
+
+// PrusaSlicer's viewer knows only its own role names in ;TYPE:; this maps ours onto them.
+std::string viewer_role(slicer::Feature f);
 
 }  // namespace strand::machines
