@@ -13,7 +13,7 @@ import urllib.request
 from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 
-from strand_browser import console_errors, expect, open_browser, wait_for
+from strand_browser import console_errors, expect, open_browser, wait_for, wait_for_previews
 
 url, out_dir = sys.argv[1], sys.argv[2]
 driver = open_browser(out_dir + "/profile")
@@ -49,15 +49,7 @@ try:
     expect(len(downs) == 1, "%d pen-down commands for one line, not 1" % len(downs))
     after = lines[downs[0] + 1:]
     expect(any(l.startswith("G1 X") for l in after[:5]), "no drawing move after the pen goes down: %s" % after[:5])
-    wait_for(lambda: driver.execute_script(
-        "const i = document.getElementById('thumb'); return i.complete && i.naturalWidth > 0"), "the PNG preview")
-    driver.switch_to.frame(driver.find_element(By.ID, "preview"))
-    painted = "const c = document.getElementById('view'); if (!c || !c.width) return false;" \
-              "const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;" \
-              "const seen = new Set(); for (let i = 0; i < d.length; i += 4 * 97) seen.add(d[i] + ',' + d[i + 1] + ',' + d[i + 2]);" \
-              "return seen.size > 1"
-    wait_for(lambda: driver.execute_script(painted), "the HTML preview to draw the line")
-    driver.switch_to.default_content()
+    wait_for_previews(driver, "the line")
     driver.find_element(By.ID, "name").send_keys("a line")
     driver.find_element(By.ID, "save").click()
     wait_for(lambda: "saved (job" in driver.find_element(By.ID, "saved").text, "the save to be confirmed", timeout_s=60)

@@ -10,7 +10,7 @@ import sys
 
 from selenium.webdriver.common.by import By
 
-from strand_browser import console_errors, expect, open_browser, wait_for
+from strand_browser import console_errors, expect, open_browser, wait_for, wait_for_previews
 
 url, out_dir = sys.argv[1], sys.argv[2]
 mesh = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "samples", "meshes", "bone-plug.stl")
@@ -38,15 +38,7 @@ try:
     saved = driver.find_element(By.ID, "saved")
     expect(saved.get_attribute("href").endswith("/gallery#job-" + driver.execute_script("return document.body.dataset.job")),
            "no link to the saved job: " + saved.get_attribute("href"))
-    wait_for(lambda: driver.execute_script(
-        "const i = document.getElementById('thumb'); return i.complete && i.naturalWidth > 0"), "the PNG preview")
-    driver.switch_to.frame(driver.find_element(By.ID, "preview"))
-    painted = "const c = document.getElementById('view'); if (!c || !c.width) return false;" \
-              "const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;" \
-              "const seen = new Set(); for (let i = 0; i < d.length; i += 4 * 97) seen.add(d[i] + ',' + d[i + 1] + ',' + d[i + 2]);" \
-              "return seen.size > 1"
-    wait_for(lambda: driver.execute_script(painted), "the HTML preview to draw the part", timeout_s=60)
-    driver.switch_to.default_content()
+    wait_for_previews(driver, "the part", timeout_s=60)
     expect(driver.execute_script("return document.documentElement.scrollWidth <= document.documentElement.clientWidth"),
            "the page is wider than the window")
     apart = driver.execute_script(

@@ -45,6 +45,20 @@ def wait_for(predicate, what, timeout_s=30.0, every_s=0.1):
     fail("timed out after %.0f s waiting for %s%s" % (timeout_s, what, " (%s)" % last_error if last_error else ""))
 
 
+def wait_for_previews(driver, what, timeout_s=30.0):
+    """Waits for a result's PNG thumbnail (#thumb) to load and its HTML preview (the #preview
+    frame) to paint its canvas with more than one colour; `what` names what it draws."""
+    wait_for(lambda: driver.execute_script(
+        "const i = document.getElementById('thumb'); return i.complete && i.naturalWidth > 0"), "the PNG preview")
+    driver.switch_to.frame(driver.find_element("id", "preview"))
+    painted = "const c = document.getElementById('view'); if (!c || !c.width) return false;" \
+              "const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;" \
+              "const seen = new Set(); for (let i = 0; i < d.length; i += 4 * 97) seen.add(d[i] + ',' + d[i + 1] + ',' + d[i + 2]);" \
+              "return seen.size > 1"
+    wait_for(lambda: driver.execute_script(painted), "the HTML preview to draw " + what, timeout_s=timeout_s)
+    driver.switch_to.default_content()
+
+
 def console_errors(driver):
     """Console messages of level SEVERE (uncaught errors, failed loads the page did not expect)."""
     return [e["message"] for e in driver.get_log("browser") if e.get("level") == "SEVERE"]
