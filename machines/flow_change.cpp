@@ -21,11 +21,7 @@ std::string flow_change_gcode(const MachineProfile& m, double flow, const std::s
   std::string out;
   if (!m.deposition.pressure_command.empty()) {
     for (const std::string& line : m.deposition.pressure_command) {
-      std::string s = line;
-      for (auto at = s.find("{flow}"); at != std::string::npos; at = s.find("{flow}", at + value.size())) {
-        s.replace(at, 6, value);
-      }
-      out += (out.empty() ? "" : "\n") + s;
+      out += (out.empty() ? "" : "\n") + replace_all(line, "{flow}", value);
     }
     return out + "\n" + comment_line(m, "flow " + value + (what.empty() ? "" : " for " + what));
   }

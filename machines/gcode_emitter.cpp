@@ -18,13 +18,6 @@ using slicer::MoveKind;
 
 namespace {
 
-std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) {
-    s.replace(at, from.size(), to);
-  }
-  return s;
-}
-
 std::string expand(const std::string& line, const MachineProfile& m) {
   std::string s = replace_all(line, "{lead_s}", fmt_fixed(m.deposition.lead_s, 1));
   s = replace_all(s, "{lead_ms}", fmt_fixed(m.deposition.lead_s * 1000.0, 0));

@@ -88,4 +88,11 @@ std::string viewer_role(slicer::Feature f) {
   return "Custom";
 }
 
+std::string replace_all(std::string s, const std::string& from, const std::string& to) {
+  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) {
+    s.replace(at, from.size(), to);
+  }
+  return s;
+}
+
 }  // namespace strand::machines

@@ -30,4 +30,7 @@ std::string comment_text(std::string text, bool parentheses = true);
 // PrusaSlicer's viewer knows only its own role names in ;TYPE:; this maps ours onto them.
 std::string viewer_role(slicer::Feature f);
 
+// `s` with every `from` replaced by `to` (the profiles' {placeholders} in templates).
+std::string replace_all(std::string s, const std::string& from, const std::string& to);
+
 }  // namespace strand::machines

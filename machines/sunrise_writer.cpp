@@ -22,13 +22,6 @@ constexpr std::size_t kMaxClassName = 64;
 // How long the robot waits for the extruder's ready level before a lap, ms.
 constexpr long kReadyTimeoutMs = 600000;
 
-std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (std::size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) {
-    s.replace(at, from.size(), to);
-  }
-  return s;
-}
-
 std::string radii(const slicer::PoseProgram& p, const MachineProfile&) {
   std::string out;
   const double r = p.substrate.value("radius_mm", 0.0);
