@@ -232,6 +232,7 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& s) {
   if (!s.substrate.empty()) return run_curved_job(generator, params, s);
+  if (!s.folder.empty()) throw std::logic_error("JobSettings::folder: for curved jobs only");
   slicer::OutputFiles out;
   for (const std::string& input : s.inputs) out.protect_input(input);
   const std::string path = job_output_path(generator, s);

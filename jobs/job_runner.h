@@ -40,6 +40,10 @@ struct JobSettings {
   // ("node=1,ligament=0", "layers=0,1") or {"by_feature": {...}} / {"by_layer": [...]};
   // null: every stroke on tool 0.
   nlohmann::json tools;
+  // A curved job's folder: its relative output, report and substrate mesh are found there,
+  // and its files name them as `strand job` run in that folder does (the workbench's job
+  // folders); empty: the current directory. Flat jobs take none (logic_error).
+  std::string folder;
 };
 
 // A job file's content, checked: {"generator", "machine", "params", "output", "report",

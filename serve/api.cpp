@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "jobs/curved_preview.h"
 #include "jobs/job_runner.h"
 #include "jobs/sweep_check.h"
 #include "jobs/sweep_runner.h"
@@ -22,6 +23,8 @@
 #include "postprocess/preview/preview_scene.h"
 #include "serve/api.h"
 #include "serve/api_state.h"
+#include "serve/job_archive.h"
+#include "serve/job_request.h"
 #include "serve/pages.h"
 #include "serve/queue_api.h"
 #include "serve/store.h"
@@ -156,6 +159,11 @@ json Api::State::produce(std::int64_t id, const jobs::JobSpec& spec, const std::
   st.inputs.clear();
   st.output = (d / (spec.generator->name + ext)).string();
   st.report = (d / "report.json").string();
+  if (!st.substrate.empty()) {  // in its folder: the files name each other as `strand job` run there does
+    st.folder = d.string();
+    st.output = spec.generator->name + ext;
+    st.report = "report.json";
+  }
   const post::Produced produced = jobs::run_job(*spec.generator, spec.params, st);
   // The summary names the files as the gallery does: without the data directory.
   std::string summary = produced.summary;
@@ -164,7 +172,15 @@ json Api::State::produce(std::int64_t id, const jobs::JobSpec& spec, const std::
   json result = {{"summary", summary}, {"report", produced.report}, {"figures", figures_of(produced.report)}};
   result["check"] = json();
   const std::string base = "/api/jobs/" + std::to_string(id) + "/files/";
-  if (ext == ".gcode") {
+  if (!st.substrate.empty()) {  // poses or rotary G-code drawn on the substrate, as strand preview draws them
+    const std::string file = (d / st.output).string();
+    try {
+      const post::PreviewScene scene = jobs::curved_file_scene(file, slicer::read_file(file), slicer::kDefaultArcToleranceMm);
+      slicer::write_file_atomic((d / "preview.png").string(), jobs::thumbnail_png(scene));
+      slicer::write_file_atomic((d / "preview.html").string(), post::render_html(scene, st.output));
+    } catch (const std::exception&) {
+    }
+  } else if (ext == ".gcode") {
     const std::string gcode = slicer::read_file(st.output);
     result["check"] = jobs::sweep_check_summary(gcode, st.machine);
     try {
@@ -191,12 +207,13 @@ json Api::State::produce(std::int64_t id, const jobs::JobSpec& spec, const std::
   result["gcode"] = url_if(spec.generator->name + ".gcode");
   result["preview_png"] = url_if("preview.png");
   result["preview_html"] = url_if("preview.html");
+  result["zip"] = "/api/jobs/" + std::to_string(id) + "/files.zip";
   return result;
 }
 
 Response Api::State::run(const Request& r, bool save) {
-  json j = slicer::parse_json(r.body, "request");
-  if (!j.is_object()) throw InputError("request: must be a JSON object (a job file: generator, machine, params)");
+  JobRequest request = read_job_request(r);  // a curved substrate's keys gathered and checked
+  json& j = request.job;
   std::string name;
   if (save) {
     name = slicer::get_text(j, "name", "job", "");
@@ -226,6 +243,14 @@ Response Api::State::run(const Request& r, bool save) {
   if (!options.run_jobs) return json_response(200, {{"checked", true}});
 
   const std::int64_t id = new_job(save, name, dump(j));
+  if (!request.mesh.empty()) {  // the uploaded substrate (job.substrate.mesh), read from the job's folder
+    try {
+      slicer::write_file_atomic((job_dir(id) / request.mesh_name).string(), request.mesh);
+    } catch (...) {
+      drop_job(id);
+      throw;
+    }
+  }
   auto promise = std::make_shared<std::promise<json>>();
   std::future<json> done = promise->get_future();
   const bool queued = pool.submit([this, id, spec, ext, promise] {
@@ -319,6 +344,14 @@ Response Api::State::route(const Request& r) {
       }
       if (!get) throw method_not_allowed("GET or DELETE");
       return json_response(200, summary_of(*row, true));
+    }
+    if (p.size() == 4 && p[3] == "files.zip") {
+      if (!get) throw method_not_allowed("GET");
+      std::vector<std::string> names;  // the recorded names only, never the folder's listing
+      for (const auto& f : summary_of(*row, false).value("files", json::array()))
+        if (f.is_object() && f.contains("name") && f.at("name").is_string()) names.push_back(f.at("name").get<std::string>());
+      if (names.empty()) throw HttpError(404, "job " + std::to_string(id) + " has no files");
+      return archive_response(dir / "scratch", job_dir(id), names, "strand-job-" + std::to_string(id) + ".zip");
     }
     if (p.size() == 5 && p[3] == "files") {
       if (!get) throw method_not_allowed("GET");

@@ -27,6 +27,10 @@ struct SliceForm {
 // ".glb", ".3mf", or "" for none of them.
 std::string mesh_extension(const std::string& bytes);
 
+// Refuses a mesh that would make its reader open another file (a glTF's external buffers or
+// images, an OBJ's material library by a path): InputError "FIELD: ...".
+void check_mesh_references(const std::string& bytes, const std::string& ext, const std::string& field);
+
 // Throws InputError naming the first bad field ("scaffold.nozzle = -1: must be in ..."), or
 // HttpError 413 past kMaxUploadBytes. The client's file name is never a path: the server
 // keeps the mesh as part.EXT, and a mesh that names other files (a glTF's external buffers,

@@ -56,14 +56,14 @@ bool has_line_starting(std::string_view text, std::string_view word) {
 }
 
 // glTF names buffers and images by URI; only data: URIs keep a reader inside the upload.
-void check_gltf_uris(const json& g) {
+void check_gltf_uris(const json& g, const std::string& field) {
   for (const char* list : {"buffers", "images"}) {
     if (!g.contains(list) || !g.at(list).is_array()) continue;
     for (const json& item : g.at(list)) {
       if (!item.is_object() || !item.contains("uri") || !item.at("uri").is_string()) continue;
       const std::string uri = item.at("uri").get<std::string>();
       if (uri.rfind("data:", 0) == 0) continue;
-      throw InputError("slice.file: a glTF upload must hold its buffers and images (data: URIs, or a GLB); it names '" +
+      throw InputError(field + ": a glTF upload must hold its buffers and images (data: URIs, or a GLB); it names '" +
                        uri.substr(0, 80) + "'");
     }
   }
@@ -71,7 +71,7 @@ void check_gltf_uris(const json& g) {
 
 // An OBJ's material library is read from the OBJ's directory: a plain name stays in the
 // job's own directory, a path could reach any file (or a device that never ends).
-void check_obj_materials(std::string_view text) {
+void check_obj_materials(std::string_view text, const std::string& field) {
   for (std::size_t at = 0; at < text.size();) {
     const std::size_t end = std::min(text.find('\n', at), text.size());
     const std::string_view line = trim(text.substr(at, end - at));
@@ -79,28 +79,32 @@ void check_obj_materials(std::string_view text) {
     if (!line.starts_with("mtllib")) continue;
     const std::string_view lib = trim(line.substr(6));
     if (lib.find_first_of("/\\") != std::string_view::npos || lib.find("..") != std::string_view::npos) {
-      throw InputError("slice.file: an OBJ upload may name its material library by a plain file name only, not '" +
+      throw InputError(field + ": an OBJ upload may name its material library by a plain file name only, not '" +
                        std::string(lib.substr(0, 80)) + "'");
     }
   }
 }
 
-void check_references(const std::string& bytes, const std::string& ext) {
+}  // namespace
+
+void check_mesh_references(const std::string& bytes, const std::string& ext, const std::string& field) {
   if (ext == ".gltf") {
     const json g = json::parse(bytes, nullptr, false);
-    if (!g.is_object()) throw InputError("slice.file: cannot read it as glTF (its JSON does not parse)");
-    check_gltf_uris(g);
+    if (!g.is_object()) throw InputError(field + ": cannot read it as glTF (its JSON does not parse)");
+    check_gltf_uris(g, field);
   } else if (ext == ".glb") {
     // header (magic, version, length), then the JSON chunk: length, type "JSON", data
     const bool json_chunk = bytes.size() >= 20 && bytes.compare(16, 4, "JSON") == 0 &&
                             le32(bytes, 12) <= bytes.size() - 20;
     const json g = json_chunk ? json::parse(bytes.substr(20, le32(bytes, 12)), nullptr, false) : json();
-    if (!g.is_object()) throw InputError("slice.file: cannot read it as GLB (no JSON chunk that parses)");
-    check_gltf_uris(g);
+    if (!g.is_object()) throw InputError(field + ": cannot read it as GLB (no JSON chunk that parses)");
+    check_gltf_uris(g, field);
   } else if (ext == ".obj") {
-    check_obj_materials(bytes);
+    check_obj_materials(bytes, field);
   }
 }
+
+namespace {
 
 bool switch_value(const std::string& key, const std::string& v) {
   if (v == "1" || v == "true" || v == "on" || v == "yes") return true;
@@ -219,7 +223,7 @@ SliceForm read_slice_form(const Request& r) {
       f.mesh = u.content;
       const std::string ext = mesh_extension(u.content);
       if (ext.empty()) throw InputError("slice.file: not a mesh file (STL, OBJ, PLY, OFF, glTF/GLB or 3MF)");
-      check_references(u.content, ext);
+      check_mesh_references(u.content, ext, "slice.file");
       f.input = "part" + ext;
       if (f.name.empty()) f.name = shown_name(u.filename);
       continue;

@@ -31,6 +31,15 @@ struct SubstrateSpec {
   // profile's extruder.e_per_mm (--extrusion).
   std::string extrusion;
   std::string mesh_path;  // type "mesh": the substrate mesh file (workpiece frame, mm)
+  // Where a relative mesh_path is found (the job's folder); empty: the current directory.
+  // Files and reports name the mesh by mesh_path, as written.
+  std::string mesh_folder;
+
+  // mesh_path as a path from the current directory: the file to read.
+  std::string mesh_file() const {
+    const bool absolute = !mesh_path.empty() && mesh_path.front() == '/';
+    return mesh_folder.empty() || absolute ? mesh_path : mesh_folder + "/" + mesh_path;
+  }
 
   bool operator==(const SubstrateSpec&) const = default;
 };

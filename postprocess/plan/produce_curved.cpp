@@ -398,7 +398,7 @@ CurvedProduced produce_on_mesh(const slicer::Toolpath& t, const slicer::Substrat
   nlohmann::json robot = check_robot(out.program, m);
   const machines::TransitPlan transit = plan_robot_transit(
       out.program, m,
-      machines::mesh_workpiece(slicer::read_mesh_file(s.mesh_path), printed_mm(out.program)), robot);
+      machines::mesh_workpiece(slicer::read_mesh_file(s.mesh_file()), printed_mm(out.program)), robot);
   out.report = std::move(job.report);
   out.report["parameters"]["arc-tolerance"] = tol;
   out.report["robot"] = robot;

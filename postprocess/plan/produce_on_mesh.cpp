@@ -107,8 +107,8 @@ MeshJob plan_mesh_job(const slicer::Toolpath& t, const slicer::SubstrateSpec& s,
                       const machines::MachineProfile& m, double tol, const std::string& output) {
   require_mesh_machine(m);
   if (t.layers.empty()) throw InputError("the pattern has no layers to place on the mesh");
-  const slicer::Mesh mesh = read_substrate_mesh(s.mesh_path);
-  const std::string fingerprint = slicer::content_fingerprint(slicer::read_file(s.mesh_path));
+  const slicer::Mesh mesh = read_substrate_mesh(s.mesh_file());
+  const std::string fingerprint = slicer::content_fingerprint(slicer::read_file(s.mesh_file()));
   const slicer::MeshSubstrate sub(mesh, s.mesh_path);
   MeshJob job;
   const auto [lo, hi] = slicer::bounds(t);
