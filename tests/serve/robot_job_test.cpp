@@ -281,5 +281,26 @@ TEST_F(RobotJobTest, UploadsBoundedPathsRefusedOtherSitesRefused) {
   EXPECT_EQ(get(port_, "/api/jobs/" + id + "/files.zip/x").status, 404);
 }
 
+TEST_F(RobotJobTest, RobotJobDocsCurlExamplesRun) {
+  if (strand::testing::run_in_shell("command -v curl", dir_).exit_code != 0) GTEST_SKIP() << "curl not installed";
+  const std::string root = dir_ + "/root";
+  fs::create_directories(root + "/samples/meshes");
+  std::ofstream(root + "/samples/meshes/sphere-cap.stl", std::ios::binary) << source("samples/meshes/sphere-cap.stl");
+  const auto ran = strand::testing::run_doc_curl_lines("## Robot jobs", port_, root);
+  ASSERT_EQ(ran.size(), 3u);
+  for (const auto& c : ran) EXPECT_EQ(c.exit_code, 0) << c.line << "\n" << c.output;
+  EXPECT_EQ(unzip(slurp(root + "/sleeve.zip")).size(), json::parse(slurp(root + "/sleeve.json")).at("files").size());
+  EXPECT_EQ(json::parse(slurp(root + "/cap.json")).at("job").at("substrate").at("mesh"), "substrate.stl");
+}
+
+TEST_F(RobotJobTest, BrowserRunsRobotJobsOnACylinderAndAnUploadedMesh) {
+  const auto r = strand::testing::run_browser_script("tests/serve/browser/robot_job.py", url("/"), dir_);
+  if (r.exit_code == 77) GTEST_SKIP() << "python3-selenium or chromium-driver not installed";
+  ASSERT_EQ(r.exit_code, 0) << r.log << r.out;
+  const json list = get(port_, "/api/jobs").j().at("jobs");
+  ASSERT_EQ(list.size(), 1u) << "the mesh job saved";
+  EXPECT_EQ(list.at(0).at("job").at("substrate").at("type"), "mesh");
+}
+
 }  // namespace
 }  // namespace strand::serve
