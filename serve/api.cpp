@@ -304,7 +304,8 @@ Response Api::State::route(const Request& r) {
   if (r.path == "/draw" || r.path == "/api/plot") return route_plot(r);
   if (r.path == "/slice" || r.path == "/api/slice") return route_slice(r);
   if (is_queue_path(r.path)) return route_queue(r);
-  if (r.path == "/api/sweeps" || r.path.rfind("/api/sweeps/", 0) == 0) return route_sweeps(r);
+  if (r.path == "/sweep" || r.path == "/api/sweeps" || r.path.rfind("/api/sweeps/", 0) == 0)
+    return route_sweeps(r);
   if (p.size() < 2 || p[0] != "api") throw HttpError(404, "no such page: " + r.path.substr(0, 200));
   const auto method_not_allowed = [&](const std::string& allowed) {
     return HttpError(405, r.method.substr(0, 20) + " " + r.path.substr(0, 200) + ": use " + allowed);

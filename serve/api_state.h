@@ -6,7 +6,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -36,6 +38,8 @@ class HttpError : public std::runtime_error {
 std::string dump(const nlohmann::json& j);
 Response json_response(int status, const nlohmann::json& j);
 Response error(int status, const std::string& message);
+// An embedded page ("design.html") as a GET answers it; 405 unless `method` is GET or HEAD.
+Response page_response(const std::string& name, const std::string& method);
 // "/api/jobs/3" -> {"api", "jobs", "3"}; a path not starting with '/' matches no route.
 std::vector<std::string> split_path(const std::string& path);
 // A job id from the path, 404 unless digits.
@@ -56,6 +60,10 @@ struct Api::State {
   ApiOptions options;
   std::filesystem::path dir;
   Store store;
+  // Sweeps still running: their progress (done, total, failed) by id, for GET /api/sweeps/{id}
+  // (sweep_api.cpp). Declared before the pool, whose workers update it.
+  std::mutex sweep_mu;
+  std::map<std::int64_t, nlohmann::json> sweep_progress;
   WorkerPool pool;
   std::unique_ptr<Queue> queue;  // the machine queue and its sender threads (queue.h)
 
@@ -90,8 +98,10 @@ struct Api::State {
   Response route_plot(const Request& r);
   // GET /slice and POST /api/slice (slice_api.cpp).
   Response route_slice(const Request& r);
-  // POST /api/sweeps, GET /api/sweeps/{id}/files/... (sweep_api.cpp).
+  // GET /sweep, POST /api/sweeps, GET /api/sweeps/{id}[/files/...] (sweep_api.cpp).
   Response route_sweeps(const Request& r);
+  nlohmann::json sweep_state(const JobRow& row);
+  nlohmann::json with_saved_job(nlohmann::json sweep);
   Response run(const Request& r, bool save);
   nlohmann::json produce(std::int64_t id, const jobs::JobSpec& spec, const std::string& ext);
   nlohmann::json summary_of(const JobRow& row, bool with_report);

@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "serve/api_state.h"
+#include "serve/pages.h"
 #include "serve/queue.h"
 
 namespace strand::serve {
@@ -121,6 +122,20 @@ std::string cookie(const Request& r, const std::string& name) {
     pos = end + 1;
   }
   return "";
+}
+
+Response page_response(const std::string& name, const std::string& method) {
+  if (method != "GET" && method != "HEAD")
+    throw HttpError(405, method.substr(0, 20) + " " + name + ": use GET");
+  for (const Page& pg : pages()) {
+    if (name == pg.name) {
+      Response out;
+      out.content_type = "text/html; charset=utf-8";
+      out.body = pg.text;
+      return out;
+    }
+  }
+  throw HttpError(404, "no page " + name);
 }
 
 std::string content_type_for(const std::string& name) {

@@ -1,7 +1,9 @@
-// Sweeps in the gallery (Api::State::route_sweeps): POST /api/sweeps runs a sweep file as
-// `strand sweep` does, on one worker, into the job's directory, and keeps it as one group
-// with its contact sheet (index.html); GET /api/sweeps/{id}/files/{path} serves the group's
-// files (the sheet links its previews as previews/NAME.png) by names the server recorded.
+// Sweeps in the gallery (Api::State::route_sweeps): POST /api/sweeps runs a sweep file (or a
+// saved job's parameters varied: "from_job") as `strand sweep` does, on one worker, into the
+// job's directory, and keeps it as one group with its contact sheet (index.html), waiting for
+// it or ("wait": false) answering 202 at once; GET /api/sweeps/{id} tells its progress, then
+// its points; GET /api/sweeps/{id}/files/{path} serves the group's files (the sheet links its
+// previews as previews/NAME.png) by names the server recorded. GET /sweep is the sweep page.
 #include "serve/sweep_api.h"
 
 #include <algorithm>
@@ -58,11 +60,11 @@ jobs::SweepSpec checked_sweep(json& j) {
 
 // Runs on a worker: the sweep into `d`, then its files and points as the gallery shows them.
 json sweep_into(const fs::path& d, std::int64_t id, const jobs::SweepSpec& spec,
-                const json& source) {
+                const json& source, const jobs::ProgressFn& progress) {
   jobs::SweepOptions o;
   o.dir = d.string();
   o.jobs = 1;  // one worker's share of the machine
-  const jobs::SweepResult r = jobs::run_sweep(spec, source, o, nullptr);
+  const jobs::SweepResult r = jobs::run_sweep(spec, source, o, progress);
   const std::string base = "/api/sweeps/" + std::to_string(id) + "/files/";
   json files = json::array();
   std::vector<fs::path> all;
@@ -118,14 +120,18 @@ Response sweep_file(const fs::path& d, const JobRow& row, const std::string& nam
 }  // namespace
 
 Response Api::State::route_sweeps(const Request& r) {
+  if (r.path == "/sweep") return page_response("sweep.html", r.method);
   const std::vector<std::string> p = split_path(r.path);  // api, sweeps[, id, files, ...]
-  if (p.size() >= 5 && p[3] == "files") {
-    if (r.method != "GET" && r.method != "HEAD")
-      throw HttpError(405, r.method.substr(0, 20) + " " + r.path.substr(0, 200) + ": use GET");
+  const bool get = r.method == "GET" || r.method == "HEAD";
+  if (p.size() >= 3) {
+    if (!get || (p.size() >= 4 && p[3] != "files") || p.size() == 4)
+      throw HttpError(get ? 404 : 405, r.method.substr(0, 20) + " " + r.path.substr(0, 200) +
+                                           (get ? ": no such endpoint" : ": use GET"));
     const std::int64_t id = parse_id(p[2]);
     const auto row = store.get(id);
     if (!row || json::parse(row->job, nullptr, false).value("generator", "") != "sweep")
       throw HttpError(404, "no sweep " + std::to_string(id));
+    if (p.size() == 3) return json_response(200, sweep_state(*row));
     std::string name = p[4];
     for (std::size_t k = 5; k < p.size(); ++k) name += "/" + p[k];
     return sweep_file(job_dir(id), *row, name);
@@ -145,27 +151,105 @@ Response Api::State::route_sweeps(const Request& r) {
     throw InputError("sweep.name: control characters are not allowed");
   }
   j.erase("name");
+  bool wait = true;
+  if (j.contains("wait")) {
+    if (!j["wait"].is_boolean()) throw InputError("sweep.wait: must be true or false");
+    wait = j["wait"].get<bool>();
+    j.erase("wait");
+  }
+  if (j.contains("from_job")) j = with_saved_job(std::move(j));
   const jobs::SweepSpec spec = checked_sweep(j);
   if (!options.run_jobs) return json_response(200, {{"checked", true}});
   const json job = {{"generator", "sweep"}, {"machine", spec.job.settings.machine}, {"sweep", j}};
-  const std::int64_t id = store.insert(true, name, dump(job));
+  const std::int64_t id = new_job(true, name, dump(job));
   const fs::path d = job_dir(id);
-  std::error_code ec;
-  fs::create_directories(d, ec);
-  if (ec) {
-    drop_job(id);
-    throw HttpError(500, "cannot create the sweep's directory (" + ec.message() + ")");
+  const std::size_t total = jobs::expand_points(spec).size();
+  {
+    std::lock_guard<std::mutex> lock(sweep_mu);
+    sweep_progress[id] = {{"done", 0}, {"total", total}, {"failed", 0}};
   }
-  run_and_wait(
-      pool, id, [this, id] { drop_job(id); },
-      [this, d, id, spec, j] {
-        json result = sweep_into(d, id, spec, j);
-        store.finish(id, "ok", dump(result));
-        return result;
-      });
+  const auto forget = [this, id] {
+    std::lock_guard<std::mutex> lock(sweep_mu);
+    sweep_progress.erase(id);
+  };
+  const auto run = [this, d, id, spec, j, forget] {
+    const jobs::ProgressFn progress = [this, id](const jobs::SweepProgress& at) {
+      std::lock_guard<std::mutex> lock(sweep_mu);
+      sweep_progress[id] = {{"done", at.done}, {"total", at.total}, {"failed", at.failed}};
+    };
+    json result = sweep_into(d, id, spec, j, progress);
+    store.finish(id, "ok", dump(result));
+    forget();
+    return result;
+  };
+  if (wait) {
+    run_and_wait(
+        pool, id, [this, id, forget] { forget(); drop_job(id); }, run);
+  } else {
+    const bool queued = pool.submit([this, id, run, forget] {
+      try {
+        run();
+      } catch (const std::exception& e) {  // the sweep's own error, kept for GET /api/sweeps/{id}
+        std::error_code ec;
+        fs::remove_all(job_dir(id), ec);  // no half sweep left behind
+        store.finish(id, "failed", dump({{"error", std::string(e.what()).substr(0, 500)}}));
+        forget();
+      }
+    });
+    if (!queued) {
+      forget();
+      drop_job(id);
+      throw HttpError(503, "the server is busy (" + std::to_string(kMaxWaitingJobs) +
+                               " jobs waiting); try again");
+    }
+    return json_response(202, sweep_state(*store.get(id)));
+  }
   const auto row = store.get(id);
   if (!row) throw HttpError(404, "sweep " + std::to_string(id) + " was deleted");
   return json_response(201, summary_of(*row, true));
+}
+
+// A sweep as GET /api/sweeps/{id} answers: while running its progress (done of total, failed),
+// then what POST answered (points, files, contact sheet, manifest) or the error.
+json Api::State::sweep_state(const JobRow& row) {
+  json j = summary_of(row, false);
+  std::lock_guard<std::mutex> lock(sweep_mu);
+  const auto at = sweep_progress.find(row.id);
+  if (at != sweep_progress.end()) {
+    j.update(at->second);
+  } else if (row.status == "ok" && j.contains("points")) {
+    std::size_t failed = 0;
+    for (const json& pt : j["points"]) failed += pt.value("status", "") == "failed";
+    j["done"] = j["total"] = j["points"].size();
+    j["failed"] = failed;
+  }
+  j["progress_url"] = "/api/sweeps/" + std::to_string(row.id);
+  return j;
+}
+
+// The sweep's base job taken from saved job `from_job` (its generator, machine and
+// parameters, as the gallery keeps them) in place of `job`.
+json Api::State::with_saved_job(json j) {
+  if (j.contains("job"))
+    throw InputError("sweep: give either job or from_job, not both");
+  const json& from = j["from_job"];
+  if (!from.is_number_integer() || from.get<std::int64_t>() < 1)
+    throw InputError("sweep.from_job: must be the id of a saved job (an integer >= 1)");
+  const std::int64_t id = from.get<std::int64_t>();
+  const auto row = store.get(id);
+  if (!row || !row->saved)
+    throw InputError("sweep.from_job = " + std::to_string(id) + ": no saved job with this id");
+  json job = json::parse(row->job, nullptr, false);
+  const std::string generator = job.is_object() ? job.value("generator", "") : "";
+  if (generator.empty() || generator == "sweep" || generator == "slice" || generator == "plot" ||
+      row->status != "ok") {
+    throw InputError("sweep.from_job = " + std::to_string(id) +
+                     ": job " + std::to_string(id) +
+                     " is not a finished generator job (sweeps vary a designed job's parameters)");
+  }
+  j.erase("from_job");
+  j["job"] = job;
+  return j;
 }
 
 }  // namespace strand::serve

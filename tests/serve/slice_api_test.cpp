@@ -267,7 +267,7 @@ TEST_F(SliceApiTest, BrowserFirstLookAtEveryPage) {
   const auto r = strand::testing::run_browser_script("tests/serve/browser/first_look.py", url("/"), dir_);
   if (r.exit_code == 77) GTEST_SKIP() << "python3-selenium or chromium-driver not installed";
   ASSERT_EQ(r.exit_code, 0) << r.log << r.out;
-  for (const char* page : {"design", "slice", "draw", "gallery", "queue"})
+  for (const char* page : {"design", "slice", "draw", "gallery", "sweep", "queue"})
     for (const char* size : {"wide", "phone"})
       EXPECT_TRUE(fs::exists(dir_ + "/workbench-" + page + "-" + size + ".png")) << page << " " << size;
 }

@@ -9,7 +9,9 @@
 #include <fstream>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <string>
+#include <thread>
 
 #include "serve/server.h"
 #include "tests/support/chromium.h"
@@ -33,6 +35,9 @@ const std::string kSweep = R"({"job": {"generator": "scaffold", "machine": "delt
 class SweepApiTest : public strand::testing::ServeFixture {
  protected:
   void SetUp() override { start_server("sweep-api"); }
+  std::string url(const std::string& path) const {
+    return "http://127.0.0.1:" + std::to_string(port_) + path;
+  }
   strand::testing::HttpReply post(const json& body) {
     return http_request(port_, "POST", "/api/sweeps", body.dump());
   }
@@ -105,11 +110,11 @@ TEST_F(SweepApiTest, RefusalsNameTheKey) {
   EXPECT_EQ(http_request(port_, "GET", "/api/jobs").j().at("jobs").size(), 0u);
 }
 
-// The curl example of docs/workbench.md's "Sweeps in the gallery" (ServeDocs runs it too).
+// The curl example of docs/workbench.md's "Sweeps" (ServeDocs runs it too).
 TEST_F(SweepApiTest, DocsCurlExampleRuns) {
   if (strand::testing::run_in_shell("command -v curl", dir_).exit_code != 0)
     GTEST_SKIP() << "curl not installed";
-  const auto ran = strand::testing::run_doc_curl_lines("## Sweeps in the gallery", port_, dir_);
+  const auto ran = strand::testing::run_doc_curl_lines("## Sweeps", port_, dir_);
   ASSERT_EQ(ran.size(), 1u);
   EXPECT_EQ(ran[0].exit_code, 0) << ran[0].output;
   const json sweep = json::parse(slurp(dir_ + "/sweep.json"), nullptr, false);
@@ -131,6 +136,90 @@ TEST_F(SweepApiTest, GalleryShowsTheGroupCard) {
   EXPECT_NE(dom.out.find("sweep of scaffold on deltawasp-2040-clay"), std::string::npos);
   EXPECT_NE(dom.out.find("/previews/scaffold_gap-1.6.png"), std::string::npos) << dom.out;
   EXPECT_FALSE(strand::testing::has_console_output(dom.log)) << dom.log;
+}
+
+// A saved design swept (from_job) without waiting: 202 at once with the progress address,
+// which tells done of total while it runs and the points once it has finished; the points'
+// G-code is the saved job's with only the varied parameter changed.
+TEST_F(SweepApiTest, SweepFromASavedJobReportsProgress) {
+  json design = json::parse(kSweep).at("job");
+  design["params"]["gap"] = 1.6;
+  design["name"] = "two layers";
+  const auto saved = http_request(port_, "POST", "/api/jobs", design.dump());
+  ASSERT_EQ(saved.status, 201) << saved.body;
+  const std::int64_t job = saved.j().at("id");
+  const json body = {{"name", "from the gallery"}, {"from_job", job}, {"vary", {{"gap", {1.2, 1.6}}}},
+                     {"wait", false}};
+  const auto r = post(body);
+  ASSERT_EQ(r.status, 202) << r.body;
+  EXPECT_EQ(r.j().at("total"), 2);
+  const std::string url = r.j().at("progress_url");
+  json state;
+  std::set<int> done_seen;
+  for (int i = 0; i < 600; ++i) {
+    state = http_request(port_, "GET", url).j();
+    done_seen.insert(state.value("done", -1));
+    if (state.at("status") != "running") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ASSERT_EQ(state.at("status"), "ok") << state.dump();
+  EXPECT_EQ(state.at("done"), 2);
+  EXPECT_EQ(state.at("failed"), 0);
+  EXPECT_LE(*done_seen.rbegin(), 2);
+  ASSERT_EQ(state.at("points").size(), 2u);
+  EXPECT_EQ(state.at("job").at("sweep").at("job").at("params").at("size"), "20x20")
+      << "the saved job's parameters are the base";
+  // the point with the saved gap is byte for byte the saved design's G-code
+  json same = body;
+  same["vary"] = {{"gap", {1.6}}};
+  same["wait"] = true;
+  same["name"] = "one point";
+  const json one = post(same).j();
+  const auto point = http_request(port_, "GET", one.at("points").at(0).at("output").get<std::string>());
+  design["params"]["gap"] = 1.6;
+  design["name"] = "gap 1.6";
+  const json direct = http_request(port_, "POST", "/api/jobs", design.dump()).j();
+  EXPECT_EQ(point.body, http_request(port_, "GET", direct.at("gcode").get<std::string>()).body);
+}
+
+TEST_F(SweepApiTest, FromJobRefusalsNameTheKey) {
+  const json vary = {{"gap", {1.2}}};
+  const auto missing = post({{"name", "x"}, {"from_job", 99}, {"vary", vary}});
+  EXPECT_EQ(missing.status, 400);
+  EXPECT_NE(missing.body.find("sweep.from_job = 99: no saved job"), std::string::npos) << missing.body;
+  const auto text = post({{"name", "x"}, {"from_job", "1; rm"}, {"vary", vary}});
+  EXPECT_EQ(text.status, 400);
+  EXPECT_NE(text.body.find("sweep.from_job: must be the id of a saved job"), std::string::npos) << text.body;
+  json base = json::parse(kSweep);
+  base["name"] = "s";
+  ASSERT_EQ(post(base).status, 201);  // job 1 is a sweep: not a base
+  const auto sweep = post({{"name", "x"}, {"from_job", 1}, {"vary", vary}});
+  EXPECT_NE(sweep.body.find("is not a finished generator job"), std::string::npos) << sweep.body;
+  base["from_job"] = 1;
+  EXPECT_NE(post(base).body.find("either job or from_job"), std::string::npos);
+  const auto wait = post({{"name", "x"}, {"wait", "no"}, {"job", base["job"]}, {"vary", vary}});
+  EXPECT_NE(wait.body.find("sweep.wait: must be true or false"), std::string::npos) << wait.body;
+  EXPECT_EQ(http_request(port_, "GET", "/api/sweeps/7").status, 404);
+  EXPECT_EQ(http_request(port_, "POST", "/api/sweeps/1").status, 405);
+  EXPECT_EQ(http_request(port_, "GET", "/api/jobs").j().at("jobs").size(), 1u) << "refusals keep nothing";
+}
+
+// The sweep page in Chromium (tests/serve/browser/sweep.py): a saved design chosen as the base,
+// its gap varied, the run followed to 3 of 3, the contact sheet and the scatter shown.
+TEST_F(SweepApiTest, BrowserSweepsASavedDesign) {
+  json design = json::parse(kSweep).at("job");
+  design["params"]["gap"] = 1.6;
+  design["name"] = "two layers";
+  const auto saved = http_request(port_, "POST", "/api/jobs", design.dump());
+  ASSERT_EQ(saved.status, 201) << saved.body;
+  const std::string page = url("/sweep?job=" + std::to_string(saved.j().at("id").get<int>()));
+  const auto r = strand::testing::run_browser_script("tests/serve/browser/sweep.py", page, dir_);
+  if (r.exit_code == 77) GTEST_SKIP() << "python3-selenium or chromium-driver not installed";
+  ASSERT_EQ(r.exit_code, 0) << r.log << r.out;
+  const json list = http_request(port_, "GET", "/api/jobs").j().at("jobs");
+  ASSERT_EQ(list.size(), 2u);
+  EXPECT_EQ(list.at(0).at("job").at("sweep").at("vary").at("gap"),
+            json({{"from", 1.2}, {"to", 2}, {"step", 0.4}}));
 }
 
 }  // namespace

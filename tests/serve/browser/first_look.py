@@ -14,7 +14,8 @@ from selenium.webdriver.common.by import By
 from strand_browser import console_errors, expect, open_browser, wait_for
 
 base, out_dir = sys.argv[1].rstrip("/"), sys.argv[2]
-pages = {"design": "/", "slice": "/slice", "draw": "/draw", "gallery": "/gallery", "queue": "/queue"}
+pages = {"design": "/", "slice": "/slice", "draw": "/draw", "gallery": "/gallery", "sweep": "/sweep",
+         "queue": "/queue"}
 
 # When a page has finished loading.
 ready = {
@@ -22,6 +23,7 @@ ready = {
     "slice": "return document.body.dataset.state === 'ready'",
     "draw": "return document.body.dataset.state === 'ready'",
     "gallery": "return document.body.dataset.count !== undefined",
+    "sweep": "return document.body.dataset.ready === '1'",
     "queue": "return document.body.dataset.events === 'open'",
 }
 # The example each page's form opens on: element id -> value.
@@ -32,6 +34,8 @@ examples = {
               "o-perimeters": "1", "o-scale-to-fit": "30x30x30"},
     "draw": {"source": "canvas", "machine": "xy-plotter-servo", "text": "Strand", "text-size": "10"},
     "gallery": {},
+    "sweep": {"base": "example", "key-1": "nozzle", "values-1": "0.6, 0.84", "key-2": "gap",
+              "values-2": "0.8..1.6 step 0.4", "where": "gap >= nozzle"},
     "queue": {"baud": "115200", "firmware": "marlin"},
 }
 # The top-level blocks that must not overlap: the bar and main's children (or, on the queue
