@@ -21,7 +21,7 @@ SAN_DIR := build-asan
 SAN_FLAGS := -O1 -gline-tables-only -DNDEBUG
 FUZZ_SECONDS ?= 600
 
-.PHONY: all deps configure build build-strand build-tests python install run test bench bench-micro clean sanitize fuzz fuzz-ci sanitize-build
+.PHONY: all deps web-deps configure build build-strand build-tests python install run test bench bench-micro clean sanitize fuzz fuzz-ci sanitize-build
 
 all: build
 
@@ -39,7 +39,19 @@ deps:
 	  fi; \
 	fi
 
-configure: deps
+# The viewer's browser libraries (three.js, esbuild to bundle them into the binary), pinned in
+# web/package-lock.json: `npm ci` when web/node_modules is missing or older than the lock file;
+# Debian's npm only when there is no npm at all.
+web-deps:
+	@if [ ! -f web/node_modules/.package-lock.json ] || [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then \
+	  if ! command -v npm >/dev/null; then \
+	    if [ "$$(id -u)" = "0" ]; then apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends nodejs npm >/dev/null; \
+	    else echo "npm is missing -- run 'sudo apt-get install nodejs npm' or run make as root"; exit 1; fi; \
+	  fi; \
+	  cd web && npm ci --ignore-scripts --no-audit --no-fund --loglevel=error; \
+	fi
+
+configure: deps web-deps
 	@cmake -S . -B $(BUILD_DIR) $(CMAKE_FLAGS) >/dev/null
 
 # Everything: the program, the test executable and the benchmarks.
@@ -94,7 +106,7 @@ bench: build
 bench-micro: build
 	@$(BUILD_DIR)/tests/bench/strand_bench
 
-sanitize-build: deps
+sanitize-build: deps web-deps
 	@$(MAKE) deps DEBIAN_PACKAGES="$(SANITIZE_PACKAGES)"
 	@cmake -S . -B $(SAN_DIR) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
 	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="$(SAN_FLAGS)" -DCMAKE_EXE_LINKER_FLAGS=-fuse-ld=lld \

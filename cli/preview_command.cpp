@@ -1,5 +1,5 @@
 // `strand preview FILE.gcode -o OUT`: any G-code, through the parser, drawn as .png, .svg,
-// .html (interactive, self-contained) or .glb (3D), chosen by OUT's extension.
+// .html (the 3D viewer with its data, self-contained) or .glb (3D), chosen by OUT's extension.
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -13,7 +13,7 @@
 #include "postprocess/inspect/curved_files.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "postprocess/preview/preview_gltf.h"
-#include "postprocess/preview/preview_html.h"
+#include "postprocess/preview/viewer_html.h"
 #include "postprocess/preview/preview_image.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -69,6 +69,32 @@ post::ImageOptions image_options(const PreviewArgs& a) {
   return o;
 }
 
+// The 3D viewer (viewer_html.h): G-code read layer by layer into its blocks, a curved file
+// through its scene on the substrate.
+int write_viewer(const PreviewArgs& a, const std::string& text, bool curved, PhaseProgress* progress) {
+  const std::string name = std::filesystem::path(a.input).filename().string();
+  slicer::progress_phase(progress, "parsing");
+  post::ViewerData data;
+  try {
+    data = curved ? post::viewer_data_from_scene(curved_file_scene(a.input, text, a.arc_tolerance_mm), name)
+                  : post::viewer_data_from_gcode(text, nullptr, a.arc_tolerance_mm, name);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    throw InputError(what.rfind("input = ", 0) == 0 ? what : "input = " + a.input + ": " + what);
+  }
+  slicer::progress_phase(progress, "drawing");
+  slicer::OutputFiles out;
+  out.protect_input(a.input);
+  out.stage(a.output, post::render_viewer_html(data, name));
+  out.commit();
+  if (progress) progress->finish();
+  std::size_t segments = 0;
+  for (const auto& l : data.layers) segments += l.segments;
+  std::cout << "preview " << a.input << " -> " << a.output << " (" << data.layers.size() << " layers, "
+            << segments << " segments, 3D viewer)\n";
+  return 0;
+}
+
 int run(PreviewArgs a) {
   if (a.output.empty()) a.output = output_from_input(a.input, "-preview.png");  // part.gcode -> part-preview.png
   a.colour = slicer::match_choice(a.colour, {"feature", "layer"}).value_or(a.colour);
@@ -89,6 +115,7 @@ int run(PreviewArgs a) {
   const bool curved = a.input.ends_with(".csv") || post::is_rotary_gcode(gcode);
   if (curved && a.marks)
     throw InputError("marks: only for flat G-code (a curved file is checked with strand check)");
+  if (ext == ".html") return write_viewer(a, gcode, curved, progress.get());
   post::ParsedGcode parsed;
   slicer::progress_phase(progress.get(), "parsing");
   try {  // errors name the file as strand check names it
@@ -112,7 +139,6 @@ int run(PreviewArgs a) {
   std::string bytes;
   if (ext == ".png") bytes = post::render_png(scene, o);
   if (ext == ".svg") bytes = post::render_svg(scene, o);
-  if (ext == ".html") bytes = post::render_html(scene, std::filesystem::path(a.input).filename().string());
   if (ext == ".glb") bytes = post::render_glb(scene, {.tubes = !a.lines});
   slicer::OutputFiles out;
   out.protect_input(a.input);

@@ -28,6 +28,7 @@
 #include "serve/pages.h"
 #include "serve/queue_api.h"
 #include "serve/store.h"
+#include "serve/view_api.h"
 #include "serve/worker_pool.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -304,6 +305,7 @@ Response Api::State::route(const Request& r) {
   if (r.path == "/draw" || r.path == "/api/plot") return route_plot(r);
   if (r.path == "/slice" || r.path == "/api/slice") return route_slice(r);
   if (is_queue_path(r.path)) return route_queue(r);
+  if (is_view_path(r.path)) return route_view(r);
   if (r.path == "/sweep" || r.path == "/api/sweeps" || r.path.rfind("/api/sweeps/", 0) == 0)
     return route_sweeps(r);
   if (p.size() < 2 || p[0] != "api") throw HttpError(404, "no such page: " + r.path.substr(0, 200));

@@ -100,6 +100,8 @@ struct Api::State {
   Response route_slice(const Request& r);
   // GET /sweep, POST /api/sweeps, GET /api/sweeps/{id}[/files/...] (sweep_api.cpp).
   Response route_sweeps(const Request& r);
+  // GET /view/{id}, /assets/viewer.js, /api/jobs/{id}/view[/layers] (view_api.cpp).
+  Response route_view(const Request& r);
   nlohmann::json sweep_state(const JobRow& row);
   nlohmann::json with_saved_job(nlohmann::json sweep);
   Response run(const Request& r, bool save);

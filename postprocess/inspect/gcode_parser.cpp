@@ -235,7 +235,8 @@ void Reader::dwell(const Words& w, int n) {
   slicer::push_dwell(out_.program, seconds, pos_, layer_);
   ++moves_read_;
   out_.move_lines.push_back(n);  // one line per move, dwells included
-  if (has_a_) out_.a_deg.push_back(a_), out_.e_step.push_back(0.0);
+  if (has_a_) out_.a_deg.push_back(a_);
+  if (has_a_ || sink_) out_.e_step.push_back(0.0);
 }
 
 void Reader::motion(int code, const Words& w, int n) {
@@ -282,7 +283,8 @@ void Reader::motion(int code, const Words& w, int n) {
   mv.layer = layer_;
   out_.program.moves.push_back(std::move(mv));
   out_.move_lines.push_back(n);
-  if (has_a_) out_.a_deg.push_back(a_), out_.e_step.push_back(de);
+  if (has_a_) out_.a_deg.push_back(a_);
+  if (has_a_ || sink_) out_.e_step.push_back(de);
   if (++moves_read_ == 1) out_.program.start_mm = pos_;
   pos_ = target;
   marker_pending_ = false;
@@ -293,7 +295,7 @@ bool Reader::rotary(const Words& w) {
   if (!a) return false;
   if (!has_a_) {
     out_.a_deg.assign(out_.program.moves.size(), a_);
-    out_.e_step.assign(out_.program.moves.size(), 0.0);
+    if (!sink_) out_.e_step.assign(out_.program.moves.size(), 0.0);  // a piece has its steps
   }
   has_a_ = true;
   a_ = relative_ ? a_ + *a : *a;

@@ -38,7 +38,8 @@ struct ParsedGcode {
   // Rotary-axis files (A words, degrees): the A position after each move, parallel to
   // program.moves; empty when the file has no A word.
   std::vector<double> a_deg;
-  // E advanced by each move (relative or absolute E read as a step), parallel to a_deg.
+  // E advanced by each move (relative or absolute E read as a step), parallel to a_deg; in
+  // the pieces of a reading layer by layer (parse_gcode_layers) always, parallel to the moves.
   std::vector<double> e_step;
   bool has_e = false;  // deposits are recognised by E when true, by G1 otherwise
   bool inches = false;
