@@ -12,6 +12,7 @@
 #include "cli/output_path.h"
 #include "cli/progress_bar.h"
 #include "jobs/slice_job.h"
+#include "jobs/slice_objects.h"
 #include "jobs/job_runner.h"
 #include "machines/profile.h"
 #include "patterns/region_pattern.h"
@@ -42,6 +43,7 @@ struct SliceArgs {
   std::string report;
   std::string threads;                // --threads, as given (checked by the job)
   std::string tools;                  // --tools, as given (checked by the job)
+  std::vector<std::string> parts;     // --part FILE:TOOL, as given
   std::vector<std::string> previews;  // .png/.svg/.html/.glb with the mesh under the path
 };
 
@@ -95,8 +97,10 @@ int run_slice(SliceArgs a) {
   a.settings.pattern_values = pattern_values(a);
   if (!a.threads.empty()) a.settings.threads = jobs::threads_from_text(a.threads);
   if (!a.tools.empty()) a.settings.tools = a.tools;
+  for (const std::string& p : a.parts) a.settings.parts.push_back(jobs::part_from_text(p));
   if (a.settings.output.empty()) {
-    const std::string& input = a.settings.part.empty() ? a.settings.onto : a.settings.part;
+    std::string input = a.settings.part.empty() ? a.settings.onto : a.settings.part;
+    if (input.empty() && !a.settings.parts.empty()) input = a.settings.parts.front().path;
     a.settings.output = input.empty() ? "slice.gcode" : output_from_input(input, ".gcode");
   }
   const auto progress = command_progress("slice", 6 + a.previews.size());
@@ -112,6 +116,7 @@ int run_slice(SliceArgs a) {
   for (const std::string& input : {a.settings.part, a.settings.onto}) {
     if (!input.empty()) out.protect_input(input);
   }
+  for (const jobs::SlicePart& p : a.settings.parts) out.protect_input(p.path);
   out.stage(a.settings.output, r.produced.gcode);
   if (a.settings.viewer_e) out.stage(viewer_output_path(a.settings.output), r.produced.viewer_gcode);
   if (!a.report.empty()) out.stage(a.report, slicer::dump_json(r.produced.report) + "\n");
@@ -196,7 +201,14 @@ void add_slice_command(CLI::App& app, Action& action) {
                   "the file is the same for any number");
   sub->add_option("--tools", a->tools,
                   "printheads of a multi-tool machine: by feature (wall=1,infill=0: perimeters in another ink) "
-                  "or cycled per layer (layers=0,1)");
+                  "or cycled per layer (layers=0,1); a 3MF's objects by build order (objects: object k in "
+                  "tool k, or objects=1,0)");
+  sub->add_option("--part", a->parts,
+                  "FILE:TOOL, repeatable, instead of PART: several meshes in one frame (each file's own "
+                  "coordinates), each filled in the ink of printhead TOOL; they may not overlap");
+  sub->add_option("--tool-order", s.tool_order,
+                  "printheads in each layer of a slice by objects: fewest-changes (the head already "
+                  "loaded first) or given (the objects' order); default fewest-changes");
   sub->callback([&action, a] { action = [a] { return run_slice(*a); }; });
 }
 

@@ -13,6 +13,7 @@
 #include "jobs/job_runner.h"
 #include "jobs/slice_layer_stats.h"
 #include "jobs/slice_material_bead.h"
+#include "jobs/slice_objects.h"
 #include "jobs/slice_parallel.h"
 #include "jobs/slice_thin_walls.h"
 #include "machines/profile.h"
@@ -46,6 +47,7 @@ void check_settings(const SliceSettings& s) {
                      ": must be in (0, 1] (mm)");
   }
   check_threads(s.threads);
+  check_tool_order(s.tool_order);
 }
 
 slicer::MeshPlacement placement_of(const SliceSettings& s) {
@@ -75,15 +77,21 @@ std::string mm_text(double v) {
   return buf;
 }
 
-slicer::PreparedMesh load_part(const SliceSettings& s, double& scale) {
+// The part (or, with `objects`, the objects read and placed together as one part), checked.
+slicer::PreparedMesh load_part(const SliceSettings& s, double& scale, std::vector<SliceObject>* objects) {
   if (s.up != "z" && s.up != "y") throw InputError("slice.up = " + s.up + ": must be z or y");
-  const std::string ext = std::filesystem::path(s.part).extension().string();
-  if (s.up == "y" && (ext == ".gltf" || ext == ".glb" || ext == ".GLTF" || ext == ".GLB")) {
-    throw InputError("slice.up = y: glTF is +Y up by definition and is turned to +Z already");
-  }
-  if ((ext == ".3mf" || ext == ".3MF") && s.mesh_units != "mm") {
-    throw InputError("slice.mesh-units = " + s.mesh_units +
-                     ": a 3MF file states its own unit (use --scale to resize it)");
+  std::vector<std::string> paths = {s.part};
+  if (!s.parts.empty()) paths.clear();
+  for (const SlicePart& p : s.parts) paths.push_back(p.path);
+  for (const std::string& path : paths) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (s.up == "y" && (ext == ".gltf" || ext == ".glb" || ext == ".GLTF" || ext == ".GLB")) {
+      throw InputError("slice.up = y: glTF is +Y up by definition and is turned to +Z already");
+    }
+    if ((ext == ".3mf" || ext == ".3MF") && s.mesh_units != "mm") {
+      throw InputError("slice.mesh-units = " + s.mesh_units +
+                       ": a 3MF file states its own unit (use --scale to resize it)");
+    }
   }
   check_scale(s.scale);
   if (!s.scale_to_fit.empty() && s.scale != 1.0) {
@@ -92,7 +100,15 @@ slicer::PreparedMesh load_part(const SliceSettings& s, double& scale) {
   }
   const slicer::MeshPlacement placement = placement_of(s);
   slicer::progress_phase(s.progress, "reading the mesh");
-  slicer::Mesh file = slicer::read_mesh_file(s.part);
+  slicer::Mesh file;
+  if (objects) {
+    *objects = read_slice_objects(s);
+    std::vector<slicer::Mesh> meshes;
+    for (const SliceObject& o : *objects) meshes.push_back(o.mesh);
+    file = slicer::merge_meshes(meshes);
+  } else {
+    file = slicer::read_mesh_file(s.part);
+  }
   if (s.up == "y") {
     for (slicer::Vec3& v : file.vertices_mm) v = slicer::Vec3(v.x(), -v.z(), v.y());
   }
@@ -102,6 +118,7 @@ slicer::PreparedMesh load_part(const SliceSettings& s, double& scale) {
   if (scale != 1.0)
     raw = slicer::place_mesh(std::move(raw), {scale, slicer::Vec3::Zero(), placement.place});
   slicer::progress_phase(s.progress, s.repair ? "checking and repairing the mesh" : "checking the mesh");
+  if (objects) return prepare_objects(raw, *objects, {s.repair, s.strict}, placement.place);
   slicer::PreparedMesh part = slicer::prepare_mesh(raw, {s.repair, s.strict}, "mesh = " + s.part);
   // Repairs may add triangles at the extremes: rest the part on the bed again.
   part.mesh = slicer::place_mesh(part.mesh, {1.0, slicer::Vec3::Zero(), placement.place});
@@ -137,6 +154,8 @@ void check_part_fits(const slicer::Mesh& mesh, const machines::MachineProfile& m
 nlohmann::json slice_parameters(const SliceSettings& s, const patterns::RegionPattern& p) {
   nlohmann::json j = p.values;
   if (!s.part.empty()) j["part"] = s.part_name.empty() ? s.part : s.part_name;
+  for (const SlicePart& p : s.parts) j["parts"].push_back(p.path + ":" + std::to_string(p.tool));
+  if (s.tool_order != "fewest-changes") j["tool-order"] = s.tool_order;
   if (!s.onto.empty()) j["onto"] = s.onto;
   j["pattern"] = s.pattern;
   j["perimeters"] = s.perimeters;
@@ -178,11 +197,13 @@ int layer_count(const patterns::RegionPattern& pattern, double height_mm,
 }
 
 // A part no layer can hold, or no bead can fill anywhere, is refused (no empty file).
-void check_printable(const std::vector<slicer::Region>& layers, const slicer::Vec3& size,
+void check_printable(const std::vector<patterns::PartFill>& fills, const slicer::Vec3& size,
                      const patterns::RegionPattern& p) {
   const double r = p.nozzle_mm / 2.0;
-  for (const slicer::Region& layer : layers) {
-    if (!slicer::offset_region(layer, -r).empty()) return;
+  for (const patterns::PartFill& fill : fills) {
+    for (const slicer::Region& layer : fill.layers) {
+      if (!slicer::offset_region(layer, -r).empty()) return;
+    }
   }
   throw InputError("slice.nozzle = " + slicer::short_number(p.nozzle_mm) + ": the part (" +
                    size_text(size) + ") is narrower than one bead everywhere; scale it up " +
@@ -231,7 +252,10 @@ std::vector<std::string> contour_notes(const slicer::ContourStats& c) {
 SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
                        const machines::MachineProfile& machine) {
   SliceResult r;
-  r.part = load_part(s, r.scale);
+  std::vector<SliceObject> objects;  // a slice by objects (jobs/slice_objects.h), or none
+  const bool by_object = slices_objects(s);
+  r.part = load_part(s, r.scale, by_object ? &objects : nullptr);
+  if (by_object) check_object_tools(objects, machine);
   const slicer::Box3 box = slicer::bounds(r.part.mesh);
   const slicer::Vec3 size = box.size_mm();
   if (s.on_part_size) s.on_part_size(size);
@@ -246,25 +270,50 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
                      "--scale-to-fit) or use a finer nozzle and layer");
   }
   const int layers = layer_count(pattern, size.z(), half);
-  patterns::PartFill fill;
   slicer::ContourStats contours;
   slicer::progress_phase(s.progress, "slicing");
-  fill.layers = cut_layers(r.part.mesh, pattern.layer_height_mm, layers, &contours);
+  // The part's layers, or each object's apart.
+  std::vector<std::vector<slicer::Region>> cut;
+  if (!by_object) cut.push_back(cut_layers(r.part.mesh, pattern.layer_height_mm, layers, &contours));
+  for (const SliceObject& o : objects) cut.push_back(cut_layers(o.mesh, pattern.layer_height_mm, layers, &contours));
+  if (by_object) check_objects_apart(objects, cut, pattern.layer_height_mm);
   // Thin features first: their centre-line beads print what no bead of the fill reaches.
-  patterns::PartThinBeads thin =
-      thin_features_in_parallel(fill.layers, pattern.nozzle_mm, pattern.layer_height_mm);
-  if (thin.count == 0) check_printable(fill.layers, size, pattern);
+  std::vector<patterns::PartFill> fills(cut.size());
+  patterns::PartThinBeads thin;
+  for (std::size_t i = 0; i < cut.size(); ++i) {
+    fills[i].layers = std::move(cut[i]);
+    patterns::PartThinBeads t = thin_features_in_parallel(fills[i].layers, pattern.nozzle_mm, pattern.layer_height_mm);
+    thin.count += t.count;
+    thin.length_mm += t.length_mm;
+    fills[i].extra_strokes = std::move(t.per_layer);
+  }
+  if (thin.count == 0) check_printable(fills, size, pattern);
   r.notes = r.part.defects;
   for (const auto& n : contour_notes(contours)) r.notes.push_back(n);
   nlohmann::json skipped = nlohmann::json::array();
-  for (const auto& n : skip_thin_walls(fill.layers, pattern, skipped)) r.notes.push_back(n);
-  fill.half_extent_mm = half;
-  fill.volume_mm3 = slicer::signed_volume_mm3(r.part.mesh);
-  fill.perimeters = s.perimeters;
-  fill.extra_strokes = std::move(thin.per_layer);
+  for (std::size_t i = 0; i < fills.size(); ++i) {
+    for (const auto& n : skip_thin_walls(fills[i].layers, pattern, skipped)) r.notes.push_back(n);
+    fills[i].half_extent_mm = half;
+    fills[i].volume_mm3 = slicer::signed_volume_mm3(by_object ? objects[i].mesh : r.part.mesh);
+    fills[i].perimeters = s.perimeters;
+  }
+  // A layer with material its fill leaves empty (a rounded top narrower than a bead) gets
+  // a centre bead: every layer with material deposits.
+  const FillCompletion complete = [&](const slicer::Region& region, patterns::LayerFill& f) {
+    if (f.strokes.empty() && has_material(region, pattern.nozzle_mm)) {
+      f.strokes = material_beads(region, pattern.nozzle_mm, pattern.layer_height_mm);
+    }
+  };
   // Each layer is filled, planned and written before the next (postprocess/plan/produce.h);
   // the file is kept in memory: the slice previews and checks read the finished text.
-  const std::unique_ptr<patterns::PartFillSource> filled = patterns::part_fill_layers(std::move(fill), pattern);
+  std::unique_ptr<patterns::PartFillSource> filled;
+  if (by_object) {
+    std::vector<int> tools;
+    for (const SliceObject& o : objects) tools.push_back(o.tool);
+    filled = objects_fill_layers(std::move(fills), tools, pattern, s.tool_order, complete);
+  } else {
+    filled = patterns::part_fill_layers(std::move(fills[0]), pattern);
+  }
   slicer::Toolpath& record = filled->record;
   record.parameters = slice_parameters(s, pattern);
   record.derived["size_mm"] = {size.x(), size.y(), size.z()};
@@ -275,6 +324,7 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   record.derived["skipped_regions"] = skipped;
   record.derived["thin_beads"] = {{"count", thin.count},
                                   {"length_mm", std::round(thin.length_mm * 1000.0) / 1000.0}};
+  for (const SliceObject& o : objects) record.derived["objects"].push_back({{"name", o.name}, {"tool", o.tool}});
   post::ProduceOptions po;
   po.gcode_path = s.output;
   po.viewer_e = s.viewer_e;
@@ -283,22 +333,17 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   po.keep_program = s.arc_tolerance_mm > slicer::kDefaultArcToleranceMm;  // vet_produced reads it
   // Filled a few layers ahead on every thread, planned and written in layer order.
   post::PlanOptions options = post::plan_options_from(record, s.arc_tolerance_mm);
-  if (!s.tools.is_null()) {
+  if (!s.tools.is_null() && !tools_by_object(s.tools)) {
     options.tools = tools_for(s.tools, machine, "slice.tools");
   }
   post::LayerProducer producer(record, filled->layer_count(), machine, options, po);
   SliceLayerStats stats(pattern.nozzle_mm);
-  // A layer with material its fill leaves empty (a rounded top narrower than a bead) gets
-  // a centre bead: every layer with material deposits.
-  const auto complete = [&](std::size_t k, patterns::LayerFill& f) {
-    if (f.strokes.empty() && has_material(filled->region(k), pattern.nozzle_mm)) {
-      f.strokes = material_beads(filled->region(k), pattern.nozzle_mm, pattern.layer_height_mm);
-    }
-  };
+  std::function<void(std::size_t, patterns::LayerFill&)> complete_layer;  // objects complete their own
+  if (!by_object) complete_layer = [&](std::size_t k, patterns::LayerFill& f) { complete(filled->region(k), f); };
   produce_filled(
       *filled, producer,
       [&](std::size_t k, const slicer::Layer& layer) { stats.add(k, filled->region(k), layer); },
-      complete);
+      complete_layer);
   stats.write(record.derived);
   r.produced = producer.finish();
   if (!s.tools.is_null()) r.produced.report["tools"] = s.tools;
@@ -335,58 +380,19 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
 
 }  // namespace
 
-void check_threads(const std::optional<int>& threads) {
-  if (threads && (*threads < 1 || *threads > kMaxSliceThreads)) {
-    throw InputError("slice.threads = " + std::to_string(*threads) + ": must be in [1, " +
-                     std::to_string(kMaxSliceThreads) + "]");
-  }
-}
-
-int threads_from_text(const std::string& text) {
-  int n = 0;
-  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
-  if (ec != std::errc() || end != text.data() + text.size()) {
-    throw InputError("slice.threads = " + text + ": must be a whole number in [1, " +
-                     std::to_string(kMaxSliceThreads) + "]");
-  }
-  check_threads(n);
-  return n;
-}
-
-double scale_to_fit(const slicer::Vec3& size_mm, const std::string& box) {
-  // "30x30x30", "3 x 3 x 3 cm", "30mm x 30mm x 1in" (slicer/unit_values.h).
-  const slicer::UnitValues given = slicer::parse_quantities(box, "mm", 'x');
-  const std::vector<double>& v = given.values;
-  if (!given.ok() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](double d) { return d > 0.0 && d <= 100000.0; })) {
-    throw InputError("slice.scale-to-fit = " + box + ": must be WxDxH in mm, each in (0, 100000], e.g. 30x30x30" +
-                     (given.unit_problem.empty() ? "" : " (" + given.unit_problem + ")"));
-  }
-  double f = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    if (size_mm[k] > 0.0) f = std::min(f, v[static_cast<std::size_t>(k)] / size_mm[k]);
-  }
-  if (!std::isfinite(f)) throw InputError("slice.scale-to-fit = " + box + ": the part has no size");
-  return f;
-}
-
-slicer::Vec3 rotation_from_text(const std::string& text) {
-  // "90,0,0", "0,0,1.5708rad", "0, 0, 45 deg" (slicer/unit_values.h).
-  const slicer::UnitValues given = slicer::parse_quantities(text, "deg", ',');
-  const std::vector<double>& v = given.values;
-  if (!given.ok() || v.size() != 3 || !std::all_of(v.begin(), v.end(), [](double d) { return std::abs(d) <= 360.0; })) {
-    throw InputError("slice.rotate = " + text + ": must be X,Y,Z in degrees, each in [-360, 360]" +
-                     (given.unit_problem.empty() ? "" : " (" + given.unit_problem + ")"));
-  }
-  return {v[0], v[1], v[2]};
-}
-
 SliceResult produce_slice(const SliceSettings& s) {
   const patterns::GeneratorSpec* g = patterns::find_generator(s.pattern);
   if (!g) throw InputError("slice.pattern = " + s.pattern + ": must be one of " + pattern_names());
   check_settings(s);
-  if (s.part.empty() == s.onto.empty()) {
+  if (!s.parts.empty() && (!s.part.empty() || !s.onto.empty())) {
+    throw InputError("--part: give every part as --part FILE:TOOL, without PART or --onto");
+  }
+  if (s.parts.empty() && s.part.empty() == s.onto.empty()) {
     throw InputError(
         "slice: give a part to fill or --onto SUBSTRATE to lay the pattern on, not both");
+  }
+  if (!s.onto.empty() && tools_by_object(s.tools)) {
+    throw InputError("slice.tools = objects: tools by object are for a part's objects, not --onto");
   }
   const machines::MachineProfile machine = machines::load_profile(s.machine);
   if (machine.plotter.enabled) {

@@ -21,8 +21,22 @@ inline constexpr int kMaxSliceLayers = 20000;
 inline constexpr double kMaxSliceSegments = 1e8;
 inline constexpr int kMaxSliceThreads = 256;
 
+// One object of a multi-object slice as `--part FILE:TOOL` gives it (issue 33).
+struct SlicePart {
+  std::string path;
+  int tool = 0;
+  bool operator==(const SlicePart&) const = default;
+};
+
 struct SliceSettings {
-  std::string part;                  // mesh file to fill (or empty with `onto`)
+  std::string part;                  // mesh file to fill (or empty with `onto` or `parts`)
+  // --part FILE:TOOL (repeatable), instead of `part`: several meshes in one frame (each
+  // file's own coordinates), placed together, each filled in its printhead's ink
+  // (jobs/slice_objects.h).
+  std::vector<SlicePart> parts;
+  // The tools' order in each layer of a slice by objects: "fewest-changes" (the tool the
+  // machine holds first, the others ascending) or "given" (the objects' order).
+  std::string tool_order = "fewest-changes";
   std::string part_name;             // recorded as the part instead of `part` (the workbench
                                      // names its upload so), or empty
   std::string onto;                  // substrate mesh to lay the pattern on (or empty)
@@ -50,7 +64,9 @@ struct SliceSettings {
   // written are the same for any number (jobs/slice_parallel.h).
   std::optional<int> threads;
   // --tools: printheads by feature (wall=1,infill=0: perimeters in another ink) or cycled per
-  // layer (layers=0,1), as on every generator (postprocess/plan/tool_assignment.h); null: none.
+  // layer (layers=0,1), as on every generator (postprocess/plan/tool_assignment.h); or by
+  // object of a 3MF (objects, objects=1,0, {"by_object": [1, 0]}: jobs/slice_objects.h);
+  // null: none.
   nlohmann::json tools;
 };
 

@@ -16,6 +16,12 @@ std::string slice_summary_text(const SliceResult& r, const SliceSettings& s) {
     out += "  pattern        " + s.pattern + ": at most " + std::to_string(most) + " pattern strand(s) per layer, " +
            std::to_string(s.perimeters) + " perimeter(s)\n";
   }
+  if (d.contains("objects")) {  // a slice by objects: each object's printhead
+    std::string list;
+    for (const auto& o : d.at("objects"))
+      list += (list.empty() ? "" : ", ") + o.at("name").get<std::string>() + " in T" + std::to_string(o.at("tool").get<int>());
+    out += "  objects        " + list + "\n";
+  }
   if (d.contains("thin_beads") && d.at("thin_beads").at("count").get<int>() > 0) {
     char line[96];
     std::snprintf(line, sizeof line, "%d centre line(s), %.3f mm", d.at("thin_beads").at("count").get<int>(),

@@ -2,9 +2,11 @@
 #include "slicer/mesh_3mf.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <utility>
 #include <vector>
@@ -20,6 +22,22 @@ namespace strand::slicer {
 namespace {
 
 using Affine = Eigen::Affine3d;
+
+// Triangles [first, end) of `all` with the vertices they use (an item's vertices are
+// contiguous in `all`, copied in order).
+Mesh sub_mesh(const Mesh& all, std::size_t first, std::size_t end) {
+  int lo = std::numeric_limits<int>::max(), hi = -1;
+  for (std::size_t t = first; t < end; ++t) {
+    for (int v : all.triangles[t]) lo = std::min(lo, v), hi = std::max(hi, v);
+  }
+  Mesh m;
+  m.vertices_mm.assign(all.vertices_mm.begin() + lo, all.vertices_mm.begin() + hi + 1);
+  for (std::size_t t = first; t < end; ++t) {
+    const auto& f = all.triangles[t];
+    m.triangles.push_back({f[0] - lo, f[1] - lo, f[2] - lo});
+  }
+  return m;
+}
 
 // One lib3mf handle, released when it goes out of scope.
 struct Handle {
@@ -83,9 +101,24 @@ class Reader3mf {
       fail(std::to_string(vertices) + " vertices in its build items, more than the " +
            std::to_string(kMaxMeshVertices) + " limit");
     }
-    for (const auto& [id, t] : placed) append(id, t, 0);
+    for (const auto& [id, t] : placed) {
+      item_starts_.push_back(mesh_.triangles.size());
+      append(id, t, 0);
+    }
     if (mesh_.triangles.empty()) fail("no triangles in its build items");
     return std::move(mesh_);
+  }
+
+  // read(), then the mesh cut where each build item's triangles begin (build order).
+  std::vector<Mesh> read_items() {
+    const Mesh all = read();
+    std::vector<Mesh> out;
+    for (std::size_t k = 0; k < item_starts_.size(); ++k) {
+      const std::size_t end = k + 1 < item_starts_.size() ? item_starts_[k + 1] : all.triangles.size();
+      if (end == item_starts_[k]) fail("build item " + std::to_string(k) + " has no triangles");
+      out.push_back(sub_mesh(all, item_starts_[k], end));
+    }
+    return out;
   }
 
  private:
@@ -260,10 +293,14 @@ class Reader3mf {
   std::map<DWORD, std::uint64_t> counted_;
   std::map<DWORD, std::uint64_t> vertices_;  // the vertices an object's copy places
   Mesh mesh_;
+  std::vector<std::size_t> item_starts_;  // each build item's first triangle in mesh_
 };
+
 
 }  // namespace
 
 Mesh read_3mf(const std::string& path) { return Reader3mf(path).read(); }
+
+std::vector<Mesh> read_3mf_objects(const std::string& path) { return Reader3mf(path).read_items(); }
 
 }  // namespace strand::slicer

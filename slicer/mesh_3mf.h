@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "slicer/mesh.h"
 
@@ -29,5 +30,9 @@ inline constexpr int kMax3mfXmlDepth = 64;  // XML element nesting of any part l
 // placed objects, resources or XML elements, an index out of range, a non-finite coordinate
 // or transform, or a file with no triangles.
 Mesh read_3mf(const std::string& path);
+// The same checks, each build item kept apart in build order (its components and transforms
+// applied): a multi-object print's objects (issue 33). Throws also for an item with no
+// triangles.
+std::vector<Mesh> read_3mf_objects(const std::string& path);
 
 }  // namespace strand::slicer

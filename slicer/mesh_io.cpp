@@ -91,9 +91,8 @@ void check_content(const Mesh& m, const std::string& path) {
   }
 }
 
-}  // namespace
-
-Mesh read_mesh_file(const std::string& path) {
+// The file exists, is not empty and within kMaxInputBytes; its size in bytes.
+std::uintmax_t vet_file(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw InputError("mesh = " + path + ": no such file");
@@ -105,6 +104,13 @@ Mesh read_mesh_file(const std::string& path) {
                      " MiB, larger than the " + std::to_string(kMaxInputBytes >> 20) +
                      " MiB limit");
   }
+  return size;
+}
+
+}  // namespace
+
+Mesh read_mesh_file(const std::string& path) {
+  const auto size = vet_file(path);
   const std::string ext = extension_of(path);
   Mesh m;
   if (ext == ".gltf" || ext == ".glb") {
@@ -123,6 +129,35 @@ Mesh read_mesh_file(const std::string& path) {
   }
   check_content(m, path);
   return m;
+}
+
+std::vector<Mesh> read_mesh_objects(const std::string& path) {
+  if (extension_of(path) != ".3mf") return {read_mesh_file(path)};
+  vet_file(path);
+  std::vector<Mesh> objects = read_3mf_objects(path);
+  for (const Mesh& m : objects) check_content(m, path);
+  return objects;
+}
+
+Mesh merge_meshes(const std::vector<Mesh>& meshes) {
+  Mesh out;
+  for (const Mesh& m : meshes) {
+    const auto base = static_cast<int>(out.vertices_mm.size());
+    out.vertices_mm.insert(out.vertices_mm.end(), m.vertices_mm.begin(), m.vertices_mm.end());
+    for (const auto& t : m.triangles) out.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  }
+  return out;
+}
+
+std::vector<Mesh> split_mesh(const Mesh& merged, const std::vector<Mesh>& like) {
+  std::vector<Mesh> out;
+  std::size_t v = 0;
+  for (const Mesh& m : like) {
+    Mesh piece = m;
+    for (Vec3& p : piece.vertices_mm) p = merged.vertices_mm.at(v++);
+    out.push_back(std::move(piece));
+  }
+  return out;
 }
 
 double mm_per_mesh_unit(const std::string& key, const std::string& units) {

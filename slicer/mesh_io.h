@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "slicer/mesh.h"
 
@@ -20,6 +21,14 @@ inline constexpr std::size_t kMaxMeshVertices = 3 * kMaxMeshTriangles;
 // The mesh as stored in the file (file units, file frame). Throws InputError for a missing,
 // unreadable, unknown-format, empty or too large file, and for non-finite coordinates.
 Mesh read_mesh_file(const std::string& path);
+// The objects of a multi-object file, each apart: a 3MF's build items in build order (their
+// transforms and the unit applied, as read_mesh_file places them together); any other
+// format is one object. The same checks as read_mesh_file.
+std::vector<Mesh> read_mesh_objects(const std::string& path);
+// The meshes as one (vertices and triangles in order; UVs dropped).
+Mesh merge_meshes(const std::vector<Mesh>& meshes);
+// `merged` (merge_meshes(like) with its vertices moved) cut back into meshes shaped as `like`.
+std::vector<Mesh> split_mesh(const Mesh& merged, const std::vector<Mesh>& like);
 
 enum class Placement {
   Center,  // bounding-box centre at x = y = 0 (the machine's part centre), resting on z = 0

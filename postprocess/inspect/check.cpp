@@ -27,6 +27,12 @@ std::size_t CheckReport::crossing_count() const {
   return n;
 }
 
+std::size_t CheckReport::crossings_between_tools() const {
+  std::size_t n = 0;
+  for (const auto& l : layers) n += std::count_if(l.crossings.begin(), l.crossings.end(), [](const Contact& c) { return c.between_tools(); });
+  return n;
+}
+
 std::size_t CheckReport::touch_count() const {
   std::size_t n = 0;
   for (const auto& l : layers) n += l.touches.size();
@@ -61,8 +67,16 @@ std::string xyz(const Vec3& p) {
          machines::fmt_xyz(p.z()) + ")";
 }
 
-nlohmann::json contact_json(const Contact& c) {
-  return {{"x_mm", c.at_mm.x()}, {"y_mm", c.at_mm.y()}, {"line_a", c.line_a}, {"line_b", c.line_b}};
+// A crossing or touch; between two printheads' strands (not pens), with their tools.
+nlohmann::json contact_json(const Contact& c, bool pen_drawing) {
+  nlohmann::json j = {{"x_mm", c.at_mm.x()}, {"y_mm", c.at_mm.y()}, {"line_a", c.line_a}, {"line_b", c.line_b}};
+  if (c.between_tools() && !pen_drawing) j["tools"] = {c.tool_a, c.tool_b};
+  return j;
+}
+
+// A file printed by several printheads (strands of more than one tool in a layer).
+bool several_tools(const CheckReport& r) {
+  return std::any_of(r.layers.begin(), r.layers.end(), [](const LayerCheck& l) { return l.strands_by_tool.size() > 1; });
 }
 
 nlohmann::json finding_json(const Finding& f) {
@@ -88,8 +102,8 @@ nlohmann::json to_json(const CheckReport& r) {
   nlohmann::json layers = nlohmann::json::array();
   for (const auto& l : r.layers) {
     nlohmann::json cross = nlohmann::json::array(), touch = nlohmann::json::array();
-    for (const auto& c : l.crossings) cross.push_back(contact_json(c));
-    for (const auto& c : l.touches) touch.push_back(contact_json(c));
+    for (const auto& c : l.crossings) cross.push_back(contact_json(c, r.pen_drawing));
+    for (const auto& c : l.touches) touch.push_back(contact_json(c, r.pen_drawing));
     layers.push_back({{"layer", l.layer},
                       {"z_mm", l.z_mm},
                       {"strands", l.strands},
@@ -97,6 +111,8 @@ nlohmann::json to_json(const CheckReport& r) {
                       {"touches", touch}});
     if (l.strands_by_tool.size() > 1) layers.back()["strands_by_tool"] = l.strands_by_tool;
   }
+  nlohmann::json by_tool;  // several printheads: their crossings with each other
+  if (several_tools(r) && !r.pen_drawing) by_tool = {{"crossings_between_tools", r.crossings_between_tools()}};
   nlohmann::json issues = nlohmann::json::array(), arcs = nlohmann::json::array(),
                  outside = nlohmann::json::array();
   nlohmann::json notes = nlohmann::json::array();
@@ -104,25 +120,27 @@ nlohmann::json to_json(const CheckReport& r) {
   for (const auto& i : r.notes) notes.push_back({{"line", i.line}, {"what", i.what}});
   for (const auto& f : r.arcs_forbidden) arcs.push_back(finding_json(f));
   for (const auto& f : r.outside_volume) outside.push_back(finding_json(f));
-  return {{"ok", r.ok()},
-          {"machine", r.machine},
-          {"rules", to_string(r.rules.rules)},
-          {"rules_why", r.rules.why},
-          {"pen_drawing", r.pen_drawing},
-          {"moves", r.moves},
-          {"deposit_moves", r.deposit_moves},
-          {"layers", layers},
-          {"layers_without_deposit", r.layers_without_deposit},
-          {"layers_without_deposit_index", r.layers_without_deposit_index},
-          {"crossings", r.crossing_count()},
-          {"crossings_allowed", r.crossings_allowed},
-          {"touches", r.touch_count()},
-          {"notes", notes},
-          {"parse_issues", issues},
-          {"arcs_forbidden", arcs},
-          {"arcs_forbidden_total", r.arcs_forbidden_total},
-          {"outside_volume", outside},
-          {"outside_volume_total", r.outside_volume_total}};
+  nlohmann::json out = {{"ok", r.ok()},
+                        {"machine", r.machine},
+                        {"rules", to_string(r.rules.rules)},
+                        {"rules_why", r.rules.why},
+                        {"pen_drawing", r.pen_drawing},
+                        {"moves", r.moves},
+                        {"deposit_moves", r.deposit_moves},
+                        {"layers", layers},
+                        {"layers_without_deposit", r.layers_without_deposit},
+                        {"layers_without_deposit_index", r.layers_without_deposit_index},
+                        {"crossings", r.crossing_count()},
+                        {"crossings_allowed", r.crossings_allowed},
+                        {"touches", r.touch_count()},
+                        {"notes", notes},
+                        {"parse_issues", issues},
+                        {"arcs_forbidden", arcs},
+                        {"arcs_forbidden_total", r.arcs_forbidden_total},
+                        {"outside_volume", outside},
+                        {"outside_volume_total", r.outside_volume_total}};
+  if (by_tool.is_object()) out.update(by_tool);
+  return out;
 }
 
 namespace {
@@ -191,6 +209,7 @@ void list_contacts(const CheckReport& r, bool crossings, std::string& out) {
         out += std::string(crossings ? "  crossing" : "  touch") + " in layer " +
                std::to_string(l.layer) + " at " + xy(c.at_mm) + " mm: lines " +
                std::to_string(c.line_a) + " and " + std::to_string(c.line_b) +
+               (c.between_tools() && !r.pen_drawing ? " (T" + std::to_string(c.tool_a) + " and T" + std::to_string(c.tool_b) + ": two inks)" : "") +
                "\n";
       }
       ++total;
@@ -242,6 +261,8 @@ std::string to_text(const CheckReport& r) {
   out += without_deposit_text(r);
   out += layer_table(r);
   out += crossing_heading(r);
+  if (r.crossings_between_tools() > 0 && !r.pen_drawing)
+    out += "  of which between printheads (two inks): " + std::to_string(r.crossings_between_tools()) + "\n";
   list_contacts(r, true, out);
   if (r.arcs_forbidden_total > 0)
     out += "arcs the machine forbids (" + std::to_string(r.arcs_forbidden_total) + "):\n";

@@ -106,6 +106,9 @@ struct CheckReport {
   // the diw rules, a file that deposits nothing; touches and notes are fine.
   bool ok() const;
   std::size_t crossing_count() const;
+  // Crossings between strands of different printheads (two inks, issue 33); counted in
+  // crossing_count() too.
+  std::size_t crossings_between_tools() const;
   std::size_t touch_count() const;
   // The G-code line of a move a contact or finding names (their line fields); 0 for others.
   int line_of(std::size_t move) const;

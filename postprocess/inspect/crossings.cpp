@@ -85,10 +85,10 @@ void check_layer(int layer, const std::vector<Seg>& segs, double touch, ContactR
     const bool walls = s.wall && t.wall;
     if (f.kind == slicer::Contact::Crossing) {
       out.crossings.push_back({layer, slicer::crossing_point(s.a, s.b, t.a, t.b), s.move, t.move,
-                               s.line, t.line, walls});
+                               s.line, t.line, walls, s.tool, t.tool});
     } else {
       out.touches.push_back(
-          {layer, touch_point(s, t, touch), s.move, t.move, s.line, t.line, walls});
+          {layer, touch_point(s, t, touch), s.move, t.move, s.line, t.line, walls, s.tool, t.tool});
     }
   }
 }
@@ -123,11 +123,11 @@ void ContactStream::add(const slicer::Move& mv, std::size_t move, int line, Cont
   Vec2 from = at_.head<2>();
   if (mv.is_arc) {
     for (const Vec2& q : segment_arc(from, mv.center_mm, mv.end_mm.head<2>(), mv.ccw, tol_)) {
-      segs_.push_back({from, q, move, strand_, index_++, line, wall});
+      segs_.push_back({from, q, move, strand_, index_++, line, wall, mv.tool});
       from = q;
     }
   } else if ((mv.end_mm.head<2>() - from).norm() > 0) {
-    segs_.push_back({from, mv.end_mm.head<2>(), move, strand_, index_++, line, wall});
+    segs_.push_back({from, mv.end_mm.head<2>(), move, strand_, index_++, line, wall, mv.tool});
   }
   at_ = mv.end_mm;
 }

@@ -17,6 +17,9 @@ struct Contact {
   std::size_t move_b = 0;
   int line_a = 0, line_b = 0;  // G-code lines of the two moves, when the search was told them
   bool walls = false;          // both moves are walls (FDM rules let any other pair cross)
+  // The printheads (T<n>) of the two moves; different: two inks cross (issue 33).
+  std::int16_t tool_a = 0, tool_b = 0;
+  bool between_tools() const { return tool_a != tool_b; }
 };
 
 struct ContactReport {
@@ -42,6 +45,7 @@ class ContactStream {
     std::int64_t index;   // position within its strand (consecutive pieces differ by 1)
     int line;
     bool wall;
+    std::int16_t tool;  // the printhead that deposits it
   };
 
  private:

@@ -126,6 +126,28 @@ TEST(Read3mf, ComponentsAndTransformsCompose) {
   EXPECT_NEAR(signed_volume_mm3(m), 2000.0, 1e-3);
 }
 
+// Issue 33: each build item one object, in build order; a components object stays one object
+// (its parts placed), and an empty item is named.
+TEST(Read3mf, ObjectsAreTheBuildItemsInBuildOrder) {
+  const auto dir = testing::fresh_dir("3mf-objects");
+  const std::string resources = "<object id=\"1\" type=\"model\">" + cube_mesh() + "</object>" +
+                                "<object id=\"2\" type=\"model\"><components>"
+                                "<component objectid=\"1\"/>"
+                                "<component objectid=\"1\" transform=\"1 0 0 0 1 0 0 0 1 20 0 0\"/>"
+                                "</components></object>";
+  const std::string path = write_3mf(dir, "items.3mf", model("millimeter", resources,
+      "<item objectid=\"2\" transform=\"1 0 0 0 1 0 0 0 1 0 30 0\"/><item objectid=\"1\"/>"));
+  const std::vector<Mesh> objects = read_3mf_objects(path);
+  ASSERT_EQ(objects.size(), 2u);
+  EXPECT_EQ(objects[0].triangles.size(), 24u);
+  EXPECT_EQ(objects[0].vertices_mm.size(), 16u);
+  EXPECT_NEAR(bounds(objects[0]).min_mm.y(), 30.0, 1e-9);
+  EXPECT_NEAR(bounds(objects[0]).max_mm.x(), 30.0, 1e-9);
+  EXPECT_EQ(bounds(objects[1]).max_mm, Vec3(10, 10, 10));
+  EXPECT_EQ(merge_meshes(objects), read_3mf(path));
+  EXPECT_EQ(read_mesh_objects(path), objects);
+}
+
 TEST(Read3mf, MirroringTransformKeepsTheOutsideOut) {
   const auto dir = testing::fresh_dir("3mf-mirror");
   const Mesh m = read_3mf(

@@ -37,6 +37,26 @@ TEST(Check, CrossingIsAFailureWithItsPointAndLines) {
       << to_text(r);
 }
 
+// Issue 33: strands of two printheads crossing in a layer (two inks on each other) are
+// crossings, named with their heads; one head's own layers are not.
+TEST(Check, CrossingBetweenTwoPrintheadsIsNamed) {
+  const auto r = check("M83\n;LAYER:0\nG0 X0 Y0 Z0.5\nG1 X10 Y10 E1\nT1\nG0 X10 Y0\nG1 X0 Y10 E1\n"
+                       ";LAYER:1\nG0 X0 Y5 Z1\nG1 X10 Y5 E1\nT0\nG0 X0 Y0\nG1 X10 Y0 E1\nG1 X0 Y1 E1\n");
+  ASSERT_EQ(r.layers.size(), 2u);
+  ASSERT_EQ(r.layers[0].crossings.size(), 1u);
+  EXPECT_TRUE(r.layers[0].crossings[0].between_tools());
+  EXPECT_EQ(r.layers[0].strands_by_tool, (std::vector<int>{1, 1}));
+  EXPECT_EQ(r.crossings_between_tools(), 1u);
+  EXPECT_FALSE(r.ok());
+  EXPECT_NE(to_text(r).find("lines 4 and 7 (T0 and T1: two inks)"), std::string::npos) << to_text(r);
+  EXPECT_NE(to_text(r).find("of which between printheads (two inks): 1"), std::string::npos);
+  const nlohmann::json j = to_json(r);
+  EXPECT_EQ(j["crossings_between_tools"], 1);
+  EXPECT_EQ(j["layers"][0]["crossings"][0]["tools"], nlohmann::json({0, 1}));
+  // One head's files say nothing of heads.
+  EXPECT_FALSE(to_json(check(";LAYER:0\nG0 X0 Y0 Z0.5\nG1 X10 Y10 E1\n")).contains("crossings_between_tools"));
+}
+
 // Issue 29: a file that deposits nothing fails under the diw rules and is said under the
 // others; a layer with moves but no deposit is counted apart, not as a layer.
 TEST(Check, NoDepositFailsDiwAndTravelOnlyLayersAreCountedApart) {
