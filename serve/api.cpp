@@ -25,7 +25,6 @@
 #include "serve/api_state.h"
 #include "serve/job_archive.h"
 #include "serve/job_request.h"
-#include "serve/pages.h"
 #include "serve/queue_api.h"
 #include "serve/store.h"
 #include "serve/view_api.h"
@@ -289,19 +288,8 @@ Response Api::State::run(const Request& r, bool save) {
 Response Api::State::route(const Request& r) {
   const std::vector<std::string> p = split_path(r.path);
   const bool get = r.method == "GET" || r.method == "HEAD";
-  const auto page = [](const char* name) {
-    for (const Page& pg : pages()) {
-      if (std::string(pg.name) == name) {
-        Response out;
-        out.content_type = "text/html; charset=utf-8";
-        out.body = pg.text;
-        return out;
-      }
-    }
-    throw HttpError(404, "no page");
-  };
-  if (get && r.path == "/") return page("design.html");
-  if (get && r.path == "/gallery") return page("gallery.html");
+  if (r.path == "/") return page_response("design.html", r.method);
+  if (r.path == "/gallery") return page_response("gallery.html", r.method);
   if (r.path == "/draw" || r.path == "/api/plot") return route_plot(r);
   if (r.path == "/slice" || r.path == "/api/slice") return route_slice(r);
   if (is_queue_path(r.path)) return route_queue(r);

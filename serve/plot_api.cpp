@@ -18,7 +18,6 @@
 #include "postprocess/preview/preview_scene.h"
 #include "serve/api_state.h"
 #include "serve/job_wait.h"
-#include "serve/pages.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -183,26 +182,10 @@ json plot_into(const fs::path& d, std::int64_t id, const PlotForm& f, const json
   return result;
 }
 
-Response draw_page() {
-  for (const Page& pg : pages()) {
-    if (std::string(pg.name) == "draw.html") {
-      Response out;
-      out.content_type = "text/html; charset=utf-8";
-      out.body = pg.text;
-      return out;
-    }
-  }
-  throw HttpError(404, "no page");
-}
-
 }  // namespace
 
 Response Api::State::route_plot(const Request& r) {
-  if (r.path == "/draw") {
-    if (r.method != "GET" && r.method != "HEAD")
-      throw HttpError(405, r.method.substr(0, 20) + " /draw: use GET");
-    return draw_page();
-  }
+  if (r.path == "/draw") return page_response("draw.html", r.method);
   if (r.method != "POST")
     throw HttpError(405, r.method.substr(0, 20) + " /api/plot: use POST (multipart/form-data)");
   const PlotForm f = read_plot_form(r);

@@ -13,7 +13,6 @@
 
 #include "jobs/job_runner.h"
 #include "machines/send/serial_port.h"
-#include "serve/pages.h"
 #include "serve/queue.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -156,18 +155,7 @@ Response Api::State::route_queue(const Request& r) {
   const auto only = [&](bool ok, const std::string& allowed) {
     if (!ok) throw HttpError(405, r.method.substr(0, 20) + " " + r.path.substr(0, 200) + ": use " + allowed);
   };
-  if (r.path == "/queue") {
-    only(get, "GET");
-    for (const Page& pg : pages()) {
-      if (std::string(pg.name) == "queue.html") {
-        Response out;
-        out.content_type = "text/html; charset=utf-8";
-        out.body = pg.text;
-        return out;
-      }
-    }
-    throw HttpError(404, "no page");
-  }
+  if (r.path == "/queue") return page_response("queue.html", r.method);
   if (r.path == "/api/ports") {
     only(get, "GET");
     return json_response(200, ports_json(*queue));

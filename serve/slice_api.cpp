@@ -15,7 +15,6 @@
 #include "postprocess/preview/preview_scene.h"
 #include "serve/api_state.h"
 #include "serve/job_wait.h"
-#include "serve/pages.h"
 #include "serve/slice_api.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -103,18 +102,7 @@ void check_machine(const std::string& name) {
 }  // namespace
 
 Response Api::State::route_slice(const Request& r) {
-  if (r.path == "/slice") {
-    if (r.method != "GET" && r.method != "HEAD") throw HttpError(405, r.method.substr(0, 20) + " /slice: use GET");
-    for (const Page& pg : pages()) {
-      if (std::string(pg.name) == "slice.html") {
-        Response out;
-        out.content_type = "text/html; charset=utf-8";
-        out.body = pg.text;
-        return out;
-      }
-    }
-    throw HttpError(404, "no page");
-  }
+  if (r.path == "/slice") return page_response("slice.html", r.method);
   if (r.method != "POST") throw HttpError(405, r.method.substr(0, 20) + " /api/slice: use POST (multipart/form-data)");
   const SliceForm f = read_slice_form(r);
   check_machine(f.settings.machine);

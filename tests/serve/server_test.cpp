@@ -207,10 +207,13 @@ TEST_F(ServerTest, TokenIsRequiredWhenSet) {
 }
 
 // The curl examples of docs/workbench.md (```sh lines starting with "curl "), in order, against
-// this server: each must succeed (-sf fails on an error status).
+// this server, in a folder where samples/ is the source tree's: each must succeed (-sf fails on an
+// error status).
 TEST_F(ServerTest, WorkbenchDocsCurlExamplesRun) {
   start();
   if (strand::testing::run_in_shell("command -v curl", dir_).exit_code != 0) GTEST_SKIP() << "curl not installed";
+  // the examples upload the sample meshes by their paths in the source tree
+  std::filesystem::create_directory_symlink(std::string(STRAND_SOURCE_DIR) + "/samples", dir_ + "/samples");
   std::istringstream page(slurp(std::string(STRAND_SOURCE_DIR) + "/docs/workbench.md"));
   bool in_sh = false;
   int ran = 0;
