@@ -11,7 +11,7 @@ namespace {
 
 TEST(SliceObjectsCli, ThreeMfObjectsInTwoHeadsAndTheRefusals) {
   const auto dir = fresh_dir("slice-objects-cli");
-  const std::string boxes = std::string(STRAND_SOURCE_DIR) + "/tests/data/two-boxes.3mf";
+  const std::string boxes = std::string(STRAND_SOURCE_DIR) + "/samples/meshes/two-boxes.3mf";
   auto r = run_strand("slice " + boxes + " --tools objects=1,0 --machine two-head-pneumatic --nozzle 0.6 --gap 1"
                       " -o boxes.gcode --report boxes.json", dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;

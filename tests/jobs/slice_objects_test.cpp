@@ -1,4 +1,4 @@
-// Slicing by objects (issue 33): the two objects of tests/data/two-boxes.3mf in two printheads
+// Slicing by objects (issue 33): the two objects of samples/meshes/two-boxes.3mf in two printheads
 // (build order, transforms applied), each layer one strand per head and no crossing between
 // them by `strand check`'s own analysis, E per head that of its object's beads; the same
 // objects as --part files give the same moves; overlapping objects and bad --part refused.
@@ -30,7 +30,7 @@ constexpr char kTwoScrews[] = R"({
             {"name": "stiff", "offset_mm": [40, 0, 0],
              "deposition": {"model": "e-volumetric", "mm3_per_e": 2.0, "relative_e": true}}]})";
 
-std::string two_boxes() { return std::string(STRAND_SOURCE_DIR) + "/tests/data/two-boxes.3mf"; }
+std::string two_boxes() { return std::string(STRAND_SOURCE_DIR) + "/samples/meshes/two-boxes.3mf"; }
 
 SliceSettings settings(const std::string& dir) {
   std::ofstream(dir + "/two-screws.json") << kTwoScrews;
