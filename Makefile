@@ -99,9 +99,11 @@ test: build-tests
 	@cd $(BUILD_DIR) && ctest --output-on-failure -j$$(nproc)
 
 # One table of the issue-13 figures (cpu, memory per move/stroke, pen-up travel, check and
-# sweep times) from the strand program; bench-micro runs the Google Benchmark programs.
+# sweep times) from the strand program, then the 3D viewer on a million moves (issue 34);
+# bench-micro runs the Google Benchmark programs.
 bench: build
 	@python3 tests/bench/bench_table.py $(STRAND)
+	@python3 tests/bench/view_bench.py $(STRAND)
 
 bench-micro: build
 	@$(BUILD_DIR)/tests/bench/strand_bench

@@ -173,7 +173,9 @@ class Viewer {
       }
     }
     dep.starts.push(d); trav.starts.push(t);
-    const r = (this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true }));
+    // Multisampling only for small files: software WebGL (headless, no GPU) draws a million
+    // segments several times slower with it.
+    const r = (this.renderer = new THREE.WebGLRenderer({ antialias: idx.segments <= 200000, preserveDrawingBuffer: true }));
     r.setPixelRatio(window.devicePixelRatio || 1);
     this.canvasBox.append(r.domElement);
     const scene = (this.scene = new THREE.Scene());
@@ -314,8 +316,21 @@ class Viewer {
     this.render();
   }
 
+  // One frame per animation frame however many changes asked for it; `firstFrame` resolves
+  // when the first one is on the screen (read back, so the GPU has finished it).
   render() {
-    if (this.renderer) this.renderer.render(this.scene, this.camera);
+    if (!this.renderer || this.pending) return;
+    this.pending = true;
+    requestAnimationFrame(() => {
+      this.pending = false;
+      this.renderer.render(this.scene, this.camera);
+      if (this.onFrame) {
+        const gl = this.renderer.getContext();
+        gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
+        this.onFrame();
+        this.onFrame = null;
+      }
+    });
   }
 }
 
@@ -328,7 +343,9 @@ async function main() {
   const v = new Viewer(root, source);
   window.strandViewer = v;
   try {
+    const frame = new Promise((resolve) => { v.onFrame = resolve; });
     await v.load();
+    await frame;
     const ms = performance.now() - v.t0;
     v.status.textContent = `drawn: ${v.idx.segments} segments, layers 0-${v.idx.layers.length - 1} in ${Math.round(ms)} ms`;
     v.status.dataset.ms = String(Math.round(ms));
