@@ -36,11 +36,6 @@ std::string default_output(const patterns::GeneratorSpec& g, const machines::Mac
   return (s.output_stem.empty() ? g.name : s.output_stem) + (m.robot.enabled ? ".csv" : ".gcode");
 }
 
-// A path of the job as one from the current directory (JobSettings::folder).
-std::string in_folder(const std::string& path, const JobSettings& s) {
-  return s.folder.empty() || (!path.empty() && path.front() == '/') ? path : s.folder + "/" + path;
-}
-
 }  // namespace
 
 post::CurvedProduced produce_curved_job(const patterns::GeneratorSpec& g,
@@ -67,8 +62,8 @@ post::Produced run_curved_job(const patterns::GeneratorSpec& g, const nlohmann::
   post::CurvedProduced c = produce_curved_job(g, params, s);
   slicer::OutputFiles files;
   for (const std::string& input : s.inputs) files.protect_input(input);
-  for (const auto& [path, content] : c.files) files.stage(in_folder(path, s), content);
-  if (!s.report.empty()) files.stage(in_folder(s.report, s), slicer::dump_json(c.report) + "\n");
+  for (const auto& [path, content] : c.files) files.stage(in_job_folder(path, s), content);
+  if (!s.report.empty()) files.stage(in_job_folder(s.report, s), slicer::dump_json(c.report) + "\n");
   slicer::progress_phase(s.progress, "writing files");
   files.commit();
   post::Produced out;

@@ -224,6 +224,10 @@ std::string viewer_output_path(const std::string& out) {
   return (has_ext ? out.substr(0, dot) : out) + ".viewer-e.gcode";
 }
 
+std::string in_job_folder(const std::string& path, const JobSettings& s) {
+  return s.folder.empty() || (!path.empty() && path.front() == '/') ? path : s.folder + "/" + path;
+}
+
 std::string job_output_path(const patterns::GeneratorSpec& generator, const JobSettings& s) {
   if (!s.output.empty()) return s.output;
   return (s.output_stem.empty() ? generator.name : s.output_stem) + ".gcode";
@@ -232,10 +236,9 @@ std::string job_output_path(const patterns::GeneratorSpec& generator, const JobS
 post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann::json& params,
                        const JobSettings& s) {
   if (!s.substrate.empty()) return run_curved_job(generator, params, s);
-  if (!s.folder.empty()) throw std::logic_error("JobSettings::folder: for curved jobs only");
   slicer::OutputFiles out;
   for (const std::string& input : s.inputs) out.protect_input(input);
-  const std::string path = job_output_path(generator, s);
+  const std::string path = in_job_folder(job_output_path(generator, s), s);  // the report names it as given
 #ifndef NDEBUG
   // Debug builds check the whole text of every file they write (produce_job).
   post::Produced produced = produce_job(generator, params, s);
@@ -252,7 +255,7 @@ post::Produced run_job(const patterns::GeneratorSpec& generator, const nlohmann:
   out.prepend(path, produced.gcode_head);
   if (s.viewer_e) out.prepend(viewer_output_path(path), produced.viewer_gcode_head);
 #endif
-  if (!s.report.empty()) out.stage(s.report, slicer::dump_json(produced.report) + "\n");
+  if (!s.report.empty()) out.stage(in_job_folder(s.report, s), slicer::dump_json(produced.report) + "\n");
   slicer::progress_phase(s.progress, "writing files");
   out.commit();
   return produced;

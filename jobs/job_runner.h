@@ -40,9 +40,10 @@ struct JobSettings {
   // ("node=1,ligament=0", "layers=0,1") or {"by_feature": {...}} / {"by_layer": [...]};
   // null: every stroke on tool 0.
   nlohmann::json tools;
-  // A curved job's folder: its relative output, report and substrate mesh are found there,
-  // and its files name them as `strand job` run in that folder does (the workbench's job
-  // folders); empty: the current directory. Flat jobs take none (logic_error).
+  // The job's folder: its relative output, viewer copy, report and substrate mesh are found
+  // there, and its files name them as `strand job` run in that folder does (the workbench's
+  // job folders, whose files must not name the server's directories); empty: the current
+  // directory.
   std::string folder;
 };
 
@@ -79,6 +80,10 @@ post::Produced produce_job(const patterns::GeneratorSpec& generator, const nlohm
 
 // The G-code path a job writes: settings.output, or "<output_stem or generator>.gcode".
 std::string job_output_path(const patterns::GeneratorSpec& generator, const JobSettings& settings);
+
+// `path` (an output, report or mesh of the job) as a path from the current directory: in
+// settings.folder when it is relative.
+std::string in_job_folder(const std::string& path, const JobSettings& settings);
 
 // "out/x.gcode" -> "out/x.viewer-e.gcode": the preview-only copy beside the printable file.
 std::string viewer_output_path(const std::string& gcode_path);

@@ -157,13 +157,11 @@ json Api::State::produce(std::int64_t id, const jobs::JobSpec& spec, const std::
   const fs::path d = job_dir(id);
   jobs::JobSettings st = spec.settings;
   st.inputs.clear();
-  st.output = (d / (spec.generator->name + ext)).string();
-  st.report = (d / "report.json").string();
-  if (!st.substrate.empty()) {  // in its folder: the files name each other as `strand job` run there does
-    st.folder = d.string();
-    st.output = spec.generator->name + ext;
-    st.report = "report.json";
-  }
+  // In its folder: the files name each other as `strand job` run there does, never by the
+  // data directory's path.
+  st.folder = d.string();
+  st.output = spec.generator->name + ext;
+  st.report = "report.json";
   const post::Produced produced = jobs::run_job(*spec.generator, spec.params, st);
   // The summary names the files as the gallery does: without the data directory.
   std::string summary = produced.summary;
@@ -181,7 +179,7 @@ json Api::State::produce(std::int64_t id, const jobs::JobSpec& spec, const std::
     } catch (const std::exception&) {
     }
   } else if (ext == ".gcode") {
-    const std::string gcode = slicer::read_file(st.output);
+    const std::string gcode = slicer::read_file((d / st.output).string());
     result["check"] = jobs::sweep_check_summary(gcode, st.machine);
     try {
       const post::PreviewScene scene =

@@ -2,7 +2,8 @@
 // 127.0.0.1: a job on a cylinder and on an uploaded mesh against `strand job` byte for byte,
 // files.zip holding exactly the job's recorded files, bad substrate parameters and a nozzle
 // check's refusal answered 400 with nothing kept, uploads bounded, paths never taken from the
-// client, other sites refused; the design page driven in Chromium (robot_job.py).
+// client, other sites refused; a flat job's files naming no server directory; the design page
+// and the gallery's edit and duplicate driven in Chromium (robot_job.py).
 #include <gtest/gtest.h>
 #include <zip.h>
 
@@ -281,6 +282,24 @@ TEST_F(RobotJobTest, UploadsBoundedPathsRefusedOtherSitesRefused) {
   EXPECT_EQ(get(port_, "/api/jobs/" + id + "/files.zip/x").status, 404);
 }
 
+// A flat job runs in its folder too: its files name their siblings as `strand job` run there
+// does, never by the server's data directory (the report's output, the summary).
+TEST_F(RobotJobTest, FlatJobFilesNameTheirSiblingsNotTheDataDirectory) {
+  const json params = {{"nozzle", 0.84}, {"size", "10x10"}, {"gap", 1}, {"layers", 2}};
+  const Reply r = post_json(port_, "/api/jobs", {{"name", "flat"}, {"generator", "scaffold"}, {"params", params}});
+  ASSERT_EQ(r.status, 201) << r.body;
+  const json answer = r.j();
+  EXPECT_EQ(answer.at("report").at("output"), "scaffold.gcode");
+  const std::string cli = fresh_dir("flat-cli");
+  std::ofstream(cli + "/job.json") << json({{"generator", "scaffold"}, {"params", params}});
+  expect_files_as_cli(answer, cli, "scaffold.gcode", {});
+  const std::string data = dir_ + "/data";
+  EXPECT_EQ(r.body.find(data), std::string::npos) << "the answer names the data directory";
+  for (const auto& f : answer.at("files")) {
+    EXPECT_EQ(get(port_, f.at("url")).body.find(data), std::string::npos) << f.at("name") << " names the data directory";
+  }
+}
+
 TEST_F(RobotJobTest, RobotJobDocsCurlExamplesRun) {
   if (strand::testing::run_in_shell("command -v curl", dir_).exit_code != 0) GTEST_SKIP() << "curl not installed";
   const std::string root = dir_ + "/root";
@@ -293,13 +312,31 @@ TEST_F(RobotJobTest, RobotJobDocsCurlExamplesRun) {
   EXPECT_EQ(json::parse(slurp(root + "/cap.json")).at("job").at("substrate").at("mesh"), "substrate.stl");
 }
 
+// The script also opens the gallery: a cylinder job's edit link carries its substrate, a mesh
+// job's reopens on its recorded mesh, and its duplicate sends that mesh again.
 TEST_F(RobotJobTest, BrowserRunsRobotJobsOnACylinderAndAnUploadedMesh) {
+  const Reply sleeve = post_json(port_, "/api/jobs",
+                                 {{"name", "sleeve r25"}, {"generator", "missing-rib"}, {"machine", kKuka}, {"substrate", "cylinder"},
+                                  {"substrate-radius", 25}, {"substrate-length", 90}, {"params", kRibParams}});
+  ASSERT_EQ(sleeve.status, 201) << sleeve.body;
   const auto r = strand::testing::run_browser_script("tests/serve/browser/robot_job.py", url("/"), dir_);
   if (r.exit_code == 77) GTEST_SKIP() << "python3-selenium or chromium-driver not installed";
   ASSERT_EQ(r.exit_code, 0) << r.log << r.out;
   const json list = get(port_, "/api/jobs").j().at("jobs");
-  ASSERT_EQ(list.size(), 1u) << "the mesh job saved";
-  EXPECT_EQ(list.at(0).at("job").at("substrate").at("type"), "mesh");
+  ASSERT_EQ(list.size(), 3u) << "the sleeve, the mesh job saved and its duplicate";
+  std::vector<json> caps;
+  for (const json& j : list) {
+    if (j.at("name").get<std::string>().rfind("cap lattice", 0) == 0) caps.push_back(j);
+  }
+  ASSERT_EQ(caps.size(), 2u);
+  for (const json& j : caps) EXPECT_EQ(j.at("job").at("substrate"), json({{"type", "mesh"}, {"mesh", "substrate.stl"}}));
+  ASSERT_EQ(caps[0].at("files").size(), caps[1].at("files").size());
+  for (std::size_t i = 0; i < caps[0].at("files").size(); ++i) {
+    const json& a = caps[0].at("files").at(i);
+    EXPECT_EQ(a.at("name"), caps[1].at("files").at(i).at("name"));
+    EXPECT_TRUE(get(port_, a.at("url")).body == get(port_, caps[1].at("files").at(i).at("url")).body)
+        << a.at("name") << ": the duplicate's differs";
+  }
 }
 
 }  // namespace

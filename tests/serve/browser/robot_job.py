@@ -3,11 +3,15 @@ fields on the thesis' cylinder (r 20, 80 mm), the job runs on it and lists the w
 set (pose CSV, Sunrise, KRL, the extruder's G-code) with a working "download all (.zip)" link
 and the poses drawn on the cylinder; then a tetrachiral lattice on an uploaded mesh
 (samples/meshes/sphere-cap.stl) is run and saved. Nothing overlaps at 1366x768 or 390 px.
+In the gallery (the caller saved "sleeve r25", a cylinder of radius 25 and length 90), the
+sleeve's edit link carries its cylinder, the lattice is duplicated on its recorded mesh and
+reopens on it without a file being chosen.
 Writes DIR/workbench-robot.png, a screenshot (1366x1250, for docs/img).
 Usage: robot_job.py URL-of-/ DIR
 """
 import os
 import sys
+from urllib.parse import parse_qs, urlparse
 
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import Select
@@ -102,6 +106,32 @@ try:
     wait_for(lambda: driver.find_element(By.CSS_SELECTOR, "#saved a"), "the saved job's link")
     driver.set_window_size(390, 844)
     expect_fits("390 px")
+    errors = console_errors(driver)
+    expect(not errors, "console errors: %s" % errors)
+
+    driver.set_window_size(1366, 768)
+    driver.get(url + "gallery")
+    count = lambda: driver.execute_script("return document.body.dataset.count")
+    wait_for(lambda: count() == "2", "the gallery's two jobs")
+
+    def card(name):
+        return next(c for c in driver.find_elements(By.CSS_SELECTOR, "#jobs .job")
+                    if c.find_element(By.TAG_NAME, "h2").text == name)
+
+    edit = lambda name: card(name).find_element(By.LINK_TEXT, "open to edit").get_attribute("href")
+    sleeve = parse_qs(urlparse(edit("sleeve r25")).query)
+    expect(sleeve.get("substrate") == ["cylinder"] and sleeve.get("substrate-radius") == ["25"] and
+           sleeve.get("substrate-length") == ["90"], "the sleeve's edit link lacks its cylinder: %s" % sleeve)
+    card("cap lattice").find_element(By.XPATH, ".//button[text()='duplicate']").click()
+    wait_for(lambda: count() == "3" or driver.find_element(By.ID, "status").text, "the duplicate on the recorded mesh")
+    expect(count() == "3", "the duplicate failed: " + driver.find_element(By.ID, "status").text)
+    driver.get(edit("cap lattice"))
+    wait_done("the lattice reopened on its recorded mesh")
+    note = driver.find_element(By.ID, "s-mesh-saved").text
+    expect("using substrate.stl of saved job" in note, "no note of the recorded mesh: " + note)
+    summary = driver.find_element(By.ID, "summary").text
+    expect("mesh substrate.stl: 2808 triangles" in summary, "the reopened job's summary: " + summary)
+    expect("mesh-job=" in driver.current_url, "the address lost the recorded mesh: " + driver.current_url)
     errors = console_errors(driver)
     expect(not errors, "console errors: %s" % errors)
 finally:
