@@ -312,7 +312,9 @@ class Viewer {
       row("stat-strands", "strands", String(lb.strands), a === b ? "" : String(strands)),
       row("stat-length", "length", `${fmt(lb.deposit_length_mm, 1)} mm`, a === b ? "" : `${fmt(len, 1)} mm`),
       row("stat-time", `time (${this.idx.time})`, duration(lb.time_s), a === b ? "" : duration(time)),
-      row("stat-e", "E", fmt(lb.e, 3), a === b ? "" : fmt(e, 3)));
+      // a valve or pressure machine writes no E: say so rather than show 0
+      this.idx.flow_max > 0 ? row("stat-e", "E", fmt(lb.e, 3), a === b ? "" : fmt(e, 3))
+        : row("stat-e", "E", "none", a === b ? "" : "(no E in this file)"));
     this.render();
   }
 
