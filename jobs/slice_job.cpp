@@ -15,6 +15,7 @@
 #include "jobs/slice_material_bead.h"
 #include "jobs/slice_objects.h"
 #include "jobs/slice_parallel.h"
+#include "jobs/slice_placement.h"
 #include "jobs/slice_thin_walls.h"
 #include "machines/profile.h"
 #include "patterns/region_fill.h"
@@ -77,8 +78,10 @@ std::string mm_text(double v) {
   return buf;
 }
 
-// The part (or, with `objects`, the objects read and placed together as one part), checked.
-slicer::PreparedMesh load_part(const SliceSettings& s, double& scale, std::vector<SliceObject>* objects) {
+// The part (or, with `objects`, the objects read and placed together as one part), checked;
+// `placed` is set to the map from the files' coordinates (as read) to the part frame.
+slicer::PreparedMesh load_part(const SliceSettings& s, double& scale, std::vector<SliceObject>* objects,
+                               Eigen::Affine3d& placed) {
   if (s.up != "z" && s.up != "y") throw InputError("slice.up = " + s.up + ": must be z or y");
   std::vector<std::string> paths = {s.part};
   if (!s.parts.empty()) paths.clear();
@@ -109,19 +112,30 @@ slicer::PreparedMesh load_part(const SliceSettings& s, double& scale, std::vecto
   } else {
     file = slicer::read_mesh_file(s.part);
   }
+  placed.setIdentity();
   if (s.up == "y") {
     for (slicer::Vec3& v : file.vertices_mm) v = slicer::Vec3(v.x(), -v.z(), v.y());
+    placed.linear() << 1, 0, 0, 0, 0, -1, 0, 1, 0;
   }
-  slicer::Mesh raw = slicer::place_mesh(std::move(file), placement);
+  Eigen::Affine3d step;
+  slicer::Mesh raw = slicer::place_mesh(std::move(file), placement, &step);
+  placed = step * placed;
   scale = s.scale;
   if (!s.scale_to_fit.empty()) scale = scale_to_fit(slicer::bounds(raw).size_mm(), s.scale_to_fit);
-  if (scale != 1.0)
-    raw = slicer::place_mesh(std::move(raw), {scale, slicer::Vec3::Zero(), placement.place});
+  if (scale != 1.0) {
+    raw = slicer::place_mesh(std::move(raw), {scale, slicer::Vec3::Zero(), placement.place}, &step);
+    placed = step * placed;
+  }
   slicer::progress_phase(s.progress, s.repair ? "checking and repairing the mesh" : "checking the mesh");
-  if (objects) return prepare_objects(raw, *objects, {s.repair, s.strict}, placement.place);
-  slicer::PreparedMesh part = slicer::prepare_mesh(raw, {s.repair, s.strict}, "mesh = " + s.part);
-  // Repairs may add triangles at the extremes: rest the part on the bed again.
-  part.mesh = slicer::place_mesh(part.mesh, {1.0, slicer::Vec3::Zero(), placement.place});
+  slicer::PreparedMesh part;
+  if (objects) {
+    part = prepare_objects(raw, *objects, {s.repair, s.strict}, placement.place, &step);
+  } else {
+    part = slicer::prepare_mesh(raw, {s.repair, s.strict}, "mesh = " + s.part);
+    // Repairs may add triangles at the extremes: rest the part on the bed again.
+    part.mesh = slicer::place_mesh(part.mesh, {1.0, slicer::Vec3::Zero(), placement.place}, &step);
+  }
+  placed = step * placed;
   return part;
 }
 
@@ -254,7 +268,8 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   SliceResult r;
   std::vector<SliceObject> objects;  // a slice by objects (jobs/slice_objects.h), or none
   const bool by_object = slices_objects(s);
-  r.part = load_part(s, r.scale, by_object ? &objects : nullptr);
+  Eigen::Affine3d placed;
+  r.part = load_part(s, r.scale, by_object ? &objects : nullptr, placed);
   if (by_object) check_object_tools(objects, machine);
   const slicer::Box3 box = slicer::bounds(r.part.mesh);
   const slicer::Vec3 size = box.size_mm();
@@ -347,6 +362,7 @@ SliceResult slice_part(const SliceSettings& s, const patterns::GeneratorSpec& g,
   stats.write(record.derived);
   r.produced = producer.finish();
   if (!s.tools.is_null()) r.produced.report["tools"] = s.tools;
+  r.produced.report["mesh_placement"] = mesh_placement_json("part", slice_inputs(s), placed, machine);
   check_not_empty(r.produced, s, size, pattern);
   r.toolpath = std::move(record);  // the layers went as they were written
   return r;
@@ -359,8 +375,9 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
   slicer::progress_phase(s.progress, "generating");
   r.toolpath = g.generate(slicer::resolve_params(g.table(), s.pattern_values));
   slicer::progress_phase(s.progress, "reading the substrate");
+  Eigen::Affine3d placed;
   const slicer::Mesh substrate =
-      slicer::place_mesh(slicer::read_mesh_file(s.onto), placement_of(s));
+      slicer::place_mesh(slicer::read_mesh_file(s.onto), placement_of(s), &placed);
   const slicer::MeshSurface surface(substrate, s.onto);
   post::PlanOptions options = post::plan_options_from(r.toolpath, s.arc_tolerance_mm);
   if (!s.tools.is_null()) {
@@ -374,6 +391,7 @@ SliceResult produce_onto(const SliceSettings& s, const patterns::GeneratorSpec& 
   r.toolpath.derived["substrate"] = surface.describe();
   r.produced = post::produce_program(r.toolpath, std::move(program), machine, options, s.output,
                                      s.viewer_e, s.progress);
+  r.produced.report["mesh_placement"] = mesh_placement_json("substrate", {s.onto}, placed, machine);
   r.part.mesh = substrate;  // drawn under the path by --preview
   return r;
 }

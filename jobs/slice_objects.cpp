@@ -238,7 +238,8 @@ void check_object_tools(const std::vector<SliceObject>& objects, const machines:
 }
 
 slicer::PreparedMesh prepare_objects(const slicer::Mesh& placed, std::vector<SliceObject>& objects,
-                                     const slicer::PrepareOptions& options, slicer::Placement place) {
+                                     const slicer::PrepareOptions& options, slicer::Placement place,
+                                     Eigen::Affine3d* rested) {
   std::vector<slicer::Mesh> like;
   for (const SliceObject& o : objects) like.push_back(o.mesh);
   std::vector<slicer::Mesh> pieces = slicer::split_mesh(placed, like);
@@ -251,7 +252,7 @@ slicer::PreparedMesh prepare_objects(const slicer::Mesh& placed, std::vector<Sli
     pieces[i] = std::move(p.mesh);
   }
   // Repairs may add triangles at the extremes: rest the objects on the bed again, together.
-  all.mesh = slicer::place_mesh(slicer::merge_meshes(pieces), {1.0, slicer::Vec3::Zero(), place});
+  all.mesh = slicer::place_mesh(slicer::merge_meshes(pieces), {1.0, slicer::Vec3::Zero(), place}, rested);
   pieces = slicer::split_mesh(all.mesh, pieces);
   for (std::size_t i = 0; i < objects.size(); ++i) objects[i].mesh = std::move(pieces[i]);
   return all;

@@ -55,9 +55,11 @@ void check_object_tools(const std::vector<SliceObject>& objects, const machines:
 
 // `placed` (the objects' meshes merged and placed as one part) cut back into the objects,
 // each checked and repaired as asked, then all rested on the bed together again: the objects'
-// meshes are replaced and the whole returned (changes and defects named by object).
+// meshes are replaced and the whole returned (changes and defects named by object); `rested`
+// (may be null) is set to that last shift.
 slicer::PreparedMesh prepare_objects(const slicer::Mesh& placed, std::vector<SliceObject>& objects,
-                                     const slicer::PrepareOptions& options, slicer::Placement place);
+                                     const slicer::PrepareOptions& options, slicer::Placement place,
+                                     Eigen::Affine3d* rested = nullptr);
 
 // Throws InputError naming the two objects and the layer where their regions share more than
 // kObjectOverlapMm2 (`layers[i][k]`: object i's region in layer k).

@@ -174,7 +174,7 @@ Placement placement_from(const std::string& key, const std::string& name) {
   throw InputError(key + " = " + name + ": must be center or origin");
 }
 
-Mesh place_mesh(Mesh m, const MeshPlacement& p) {
+Mesh place_mesh(Mesh m, const MeshPlacement& p, Eigen::Affine3d* applied) {
   const Eigen::Matrix3d r = (Eigen::AngleAxisd(deg_to_rad(p.rotate_deg.z()), Vec3::UnitZ()) *
                              Eigen::AngleAxisd(deg_to_rad(p.rotate_deg.y()), Vec3::UnitY()) *
                              Eigen::AngleAxisd(deg_to_rad(p.rotate_deg.x()), Vec3::UnitX()))
@@ -187,6 +187,11 @@ Mesh place_mesh(Mesh m, const MeshPlacement& p) {
     shift.y() = -(b.min_mm.y() + b.max_mm.y()) / 2.0;
   }
   for (Vec3& v : m.vertices_mm) v += shift;
+  if (applied) {
+    applied->setIdentity();
+    applied->linear() = r * p.mm_per_unit;
+    applied->translation() = shift;
+  }
   return m;
 }
 

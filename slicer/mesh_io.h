@@ -3,6 +3,7 @@
 // placement.
 #pragma once
 
+#include <Eigen/Geometry>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -44,8 +45,9 @@ struct MeshPlacement {
 // "mm", "cm", "m", "in" -> mm per unit; throws InputError naming `key` otherwise.
 double mm_per_mesh_unit(const std::string& key, const std::string& units);
 Placement placement_from(const std::string& key, const std::string& name);
-// Scales, rotates and places the mesh as the part frame expects (bottom at z = 0).
-Mesh place_mesh(Mesh m, const MeshPlacement& placement);
+// Scales, rotates and places the mesh as the part frame expects (bottom at z = 0); `applied`
+// (may be null) is set to the affine map it applied to every vertex.
+Mesh place_mesh(Mesh m, const MeshPlacement& placement, Eigen::Affine3d* applied = nullptr);
 
 // The mesh as a binary STL file's bytes (float coordinates, facet normals from the corners).
 std::string binary_stl_bytes(const Mesh& m);
