@@ -128,6 +128,7 @@ void read_tools(const nlohmann::json& j, MachineProfile& p, const std::string& o
       tool.offset_mm = Vec3(o[0].get<double>(), o[1].get<double>(), o[2].get<double>());
     }
     tool.nozzle_mm = t.value("nozzle_mm", 0.0);
+    tool.idle_lift_mm = t.value("idle_lift_mm", 0.0);
     tool.temperature_c = t.value("temperature_c", 0.0);
     tool.select_gcode = lines(t, "select_gcode");
     tool.deselect_gcode = lines(t, "deselect_gcode");

@@ -68,6 +68,9 @@ struct Tool {
   std::string name;
   Vec3 offset_mm = Vec3::Zero();  // nozzle position minus tool 0's, mm (Strand moves by it)
   double nozzle_mm = 0.0;         // 0: not given
+  // How high the head is held above its printing height while another head deposits (its
+  // own Z axis or a retracting mount), mm; 0: it rides at its offset (post/plan/idle_heads.h).
+  double idle_lift_mm = 0.0;
   Deposition deposition;
   double temperature_c = 0.0;     // a heated or cooled head's set point; 0: none
   std::vector<std::string> select_gcode;    // after a change to this head (prime, purge, wipe)

@@ -80,6 +80,7 @@ const std::vector<Field>& schema() {
           {"name", T::String, true},
           {"offset_mm", T::Vec3, false, -1000.0, 1000.0},
           {"nozzle_mm", T::Number, false, 0.01, 20.0},
+          {"idle_lift_mm", T::Number, false, 0.0, 100.0},
           {"temperature_c", T::Number, false, 1.0, 400.0},
           {"select_gcode", T::StringList},
           {"deselect_gcode", T::StringList},

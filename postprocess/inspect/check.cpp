@@ -17,7 +17,7 @@ using slicer::Vec3;
 
 bool CheckReport::ok() const {
   return crossing_count() == crossings_allowed && parse_issues.empty() &&
-         arcs_forbidden_total == 0 && outside_volume_total == 0 &&
+         arcs_forbidden_total == 0 && outside_volume_total == 0 && idle_head_collisions == 0 &&
          !(deposit_moves == 0 && rules.rules == CheckRules::Diw);
 }
 
@@ -77,6 +77,13 @@ nlohmann::json contact_json(const Contact& c, bool pen_drawing) {
 // A file printed by several printheads (strands of more than one tool in a layer).
 bool several_tools(const CheckReport& r) {
   return std::any_of(r.layers.begin(), r.layers.end(), [](const LayerCheck& l) { return l.strands_by_tool.size() > 1; });
+}
+
+nlohmann::json idle_hit_json(const IdleHeadHit& h) {
+  return {{"layer", h.layer},         {"tool", h.tool},
+          {"active_tool", h.active_tool}, {"x_mm", h.tip_mm.x()},
+          {"y_mm", h.tip_mm.y()},     {"tip_z_mm", h.tip_mm.z()},
+          {"bead_top_mm", h.bead_top_mm}, {"line", h.line}};
 }
 
 nlohmann::json finding_json(const Finding& f) {
@@ -140,6 +147,11 @@ nlohmann::json to_json(const CheckReport& r) {
                         {"outside_volume", outside},
                         {"outside_volume_total", r.outside_volume_total}};
   if (by_tool.is_object()) out.update(by_tool);
+  if (r.idle_heads_checked) {  // a machine with heads at several places
+    out["idle_head_collisions"] = r.idle_head_collisions;
+    out["idle_head_collision_list"] = nlohmann::json::array();
+    for (const auto& h : r.idle_head_hits) out["idle_head_collision_list"].push_back(idle_hit_json(h));
+  }
   return out;
 }
 
@@ -226,6 +238,25 @@ void list_findings(const std::vector<Finding>& list, std::size_t total, std::str
   if (total > kTextListed) out += "  ... and " + std::to_string(total - kTextListed) + " more\n";
 }
 
+// An idle head's tip down on the beads: where, which heads, how high.
+void list_idle_heads(const CheckReport& r, std::string& out) {
+  if (!r.idle_heads_checked) return;
+  if (r.idle_head_collisions == 0) {
+    out += "idle heads: clear of the print over every deposit\n";
+    return;
+  }
+  out += "idle heads dragging through the print (" + std::to_string(r.idle_head_collisions) +
+         "; give the idle head an idle_lift_mm, or a part the idle head stays outside of):\n";
+  for (std::size_t i = 0; i < r.idle_head_hits.size() && i < kTextListed; ++i) {
+    const IdleHeadHit& h = r.idle_head_hits[i];
+    out += "  layer " + std::to_string(h.layer) + ": T" + std::to_string(h.tool) + " idle at " + xyz(h.tip_mm) +
+           " mm, beads up to z " + machines::fmt_xyz(h.bead_top_mm) + " under it, while T" +
+           std::to_string(h.active_tool) + " deposits (line " + std::to_string(h.line) + ")\n";
+  }
+  if (r.idle_head_collisions > r.idle_head_hits.size())
+    out += "  ... and " + std::to_string(r.idle_head_collisions - r.idle_head_hits.size()) + " more\n";
+}
+
 // "2 layers with moves but no deposit, not counted as layers: 5, 6" and, for a file that
 // deposits nothing, the line that says so (a failure under the diw rules).
 std::string without_deposit_text(const CheckReport& r) {
@@ -270,6 +301,7 @@ std::string to_text(const CheckReport& r) {
   if (r.outside_volume_total > 0)
     out += "moves outside the build volume (" + std::to_string(r.outside_volume_total) + "):\n";
   list_findings(r.outside_volume, r.outside_volume_total, out);
+  list_idle_heads(r, out);
   if (!r.parse_issues.empty())
     out += "problems in the file (" + std::to_string(r.parse_issues.size()) + "):\n";
   list_notes(r.parse_issues, out);

@@ -16,6 +16,7 @@
 #include "machines/profile.h"
 #include "postprocess/inspect/crossings.h"
 #include "postprocess/inspect/gcode_parser.h"
+#include "postprocess/plan/idle_heads.h"
 
 namespace strand::post {
 
@@ -100,10 +101,17 @@ struct CheckReport {
   // not rows of `layers`, not counted as layers; their indices, the first kMaxFindings.
   std::size_t layers_without_deposit = 0;
   std::vector<int> layers_without_deposit_index;
+  // A machine whose heads sit at several places (issue 33): for every deposit, each idle
+  // head's tip against the beads laid so far (post/plan/idle_heads.h); the first
+  // IdleHeadCheck::kMaxHits places kept, all counted. Any fails the check.
+  bool idle_heads_checked = false;
+  std::size_t idle_head_collisions = 0;
+  std::vector<IdleHeadHit> idle_head_hits;
 
   static constexpr std::size_t kMaxFindings = 1000;
-  // False on crossings the rules forbid, forbidden arcs, outside moves, parse issues and, under
-  // the diw rules, a file that deposits nothing; touches and notes are fine.
+  // False on crossings the rules forbid, forbidden arcs, outside moves, parse issues, an idle
+  // head dragging through the print and, under the diw rules, a file that deposits nothing;
+  // touches and notes are fine.
   bool ok() const;
   std::size_t crossing_count() const;
   // Crossings between strands of different printheads (two inks, issue 33); counted in

@@ -8,6 +8,7 @@
 
 #include "machines/kinematics.h"
 #include "machines/plotter_kinematics.h"
+#include "postprocess/plan/arc_segmentation.h"
 #include "postprocess/plan/estimate.h"
 
 namespace strand::post {
@@ -71,6 +72,7 @@ void drop_layers_without_deposit(CheckReport& r) {
 
 CheckStream::CheckStream(const CheckOptions& o) : o_(o) {
   if (o.machine && o.machine->plotter.enabled) plotter_ = o.machine;
+  if (o.machine && !plotter_ && IdleHeadCheck(*o.machine).active()) idle_.emplace(*o.machine);
 }
 
 LayerCheck& CheckStream::row(int layer) {
@@ -93,22 +95,45 @@ void CheckStream::add(const slicer::MotionProgram& p, const std::vector<int>& mo
   for (std::size_t i = 0; i < p.moves.size(); ++i) {
     const int line = i < move_lines.size() ? move_lines[i] : 0;
     if (!plotter_) {
-      add_move(p.moves[i], first_move + i, line, layers);
+      add_move(p.moves[i], first_move + i, line, p);
       continue;
     }
     slicer::Move mv = p.moves[i];
     mv.end_mm = paper(plotter_->plotter, mv.end_mm);
-    add_move(mv, first_move + i, line, layers);
+    add_move(mv, first_move + i, line, p);
   }
   r_.moves += p.moves.size();
   take_contacts();
 }
 
-void CheckStream::add_move(const slicer::Move& mv, std::size_t move, int line, int layers) {
+void CheckStream::add_move(const slicer::Move& mv, std::size_t move, int line, const slicer::MotionProgram& p) {
   r_.deposit_moves += mv.kind == MoveKind::Deposit;
   contacts_->add(mv, move, line, found_);
   bounds(mv, move, line);
-  strands(mv, layers);  // last: it moves at_ on
+  if (idle_) idle_heads(mv, move, line, p);
+  strands(mv, static_cast<int>(p.layers.size()));  // last: it moves at_ on
+}
+
+// The file's xy are where the depositing nozzle is (its offset read from the header, or the
+// firmware's), its z the carriage's: the tip is the profile's z offset higher.
+void CheckStream::idle_heads(const slicer::Move& mv, std::size_t move, int line, const slicer::MotionProgram& p) {
+  if (mv.kind != MoveKind::Deposit) return;
+  const Vec3 up(0, 0, machines::tool_offset(*o_.machine, mv.tool).z());
+  double h = 0.0;  // the layer's height: its ;HEIGHT:, else the step from the layer below
+  if (mv.layer >= 0 && static_cast<std::size_t>(mv.layer) < p.layers.size()) {
+    const auto k = static_cast<std::size_t>(mv.layer);
+    h = p.layers[k].height_mm > 0 ? p.layers[k].height_mm : p.layers[k].z_mm - (k > 0 ? p.layers[k - 1].z_mm : 0.0);
+  }
+  if (!mv.is_arc) {
+    idle_->add(at_ + up, mv.end_mm + up, mv, h, move, line);
+    return;
+  }
+  Vec3 from = at_;
+  for (const Vec2& c : segment_arc(at_.head<2>(), mv.center_mm, mv.end_mm.head<2>(), mv.ccw, o_.arc_tolerance_mm)) {
+    const Vec3 to(c.x(), c.y(), mv.end_mm.z());
+    idle_->add(from + up, to + up, mv, h, move, line);
+    from = to;
+  }
 }
 
 // As estimate() counts them: a deposit after a travel that moved, or in a new layer,
@@ -179,6 +204,11 @@ CheckReport CheckStream::finish(const ParsedGcode& parsed, const RulesChoice& ru
   r.rules = rules;
   r.pen_drawing = rules.rules == CheckRules::Plot;
   if (o_.machine) r.machine = o_.machine->name;
+  if (idle_ && !r.pen_drawing) {
+    r.idle_heads_checked = true;
+    r.idle_head_collisions = idle_->hit_count();
+    r.idle_head_hits = idle_->hits();
+  }
   r.parse_issues = parsed.issues;
   r.notes = parsed.notes;
   // A row -1 only when deposits before the first layer have contacts.

@@ -10,6 +10,7 @@
 
 #include "postprocess/inspect/check.h"
 #include "postprocess/inspect/gcode_file.h"
+#include "postprocess/plan/idle_heads.h"
 #include "slicer/progress_listener.h"
 
 namespace strand::post {
@@ -28,9 +29,10 @@ class CheckStream {
   CheckReport finish(const ParsedGcode& parsed, const RulesChoice& rules);
 
  private:
-  void add_move(const slicer::Move& mv, std::size_t move, int line, int layers);
+  void add_move(const slicer::Move& mv, std::size_t move, int line, const slicer::MotionProgram& p);
   void strands(const slicer::Move& mv, int layers);
   void bounds(const slicer::Move& mv, std::size_t move, int line);
+  void idle_heads(const slicer::Move& mv, std::size_t move, int line, const slicer::MotionProgram& p);
   void take_contacts();
   LayerCheck& row(int layer);
 
@@ -41,6 +43,7 @@ class CheckStream {
   bool depositing_ = false;                 // the strand count's state, as estimate()'s
   int last_layer_ = -2;
   std::optional<ContactStream> contacts_;
+  std::optional<IdleHeadCheck> idle_;  // a machine with heads at several places
   ContactReport found_;  // contacts of the layers searched, until placed in their rows
   std::vector<LayerCheck> rows_;
   LayerCheck before_first_{-1, 0.0, 0, {}, {}};

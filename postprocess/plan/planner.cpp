@@ -6,6 +6,7 @@
 
 #include "machines/flow_change.h"
 #include "postprocess/plan/arc_segmentation.h"
+#include "postprocess/plan/idle_heads.h"
 #include "postprocess/plan/placement.h"
 #include "postprocess/plan/valve_lag.h"
 #include "slicer/input_error.h"
@@ -288,15 +289,18 @@ slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachinePro
   slicer::MotionProgram p;
   Planner(machine, options, p).run(t);
   finish_for_machine(p, machine);
+  IdleHeadCheck idle(machine);
+  throw_if_idle_head_drags(idle, p, machine, options.arc_tolerance_mm);
   return p;
 }
 
 struct LayerPlanner::State {
-  State(const machines::MachineProfile& m, const PlanOptions& o) : machine(m), options(o), planner(m, options, chunk) {}
+  State(const machines::MachineProfile& m, const PlanOptions& o) : machine(m), options(o), planner(m, options, chunk), idle(m) {}
   const machines::MachineProfile& machine;
   PlanOptions options;
   slicer::MotionProgram chunk;
   Planner planner;
+  IdleHeadCheck idle;  // the beads of the layers so far, under the idle heads
 };
 
 LayerPlanner::LayerPlanner(const machines::MachineProfile& machine, const PlanOptions& options)
@@ -315,6 +319,7 @@ const slicer::MotionProgram& LayerPlanner::plan(const slicer::Layer& layer) {
   s_->planner.add_layer(layer);
   if (!first) p.start_mm = before;  // the first layer's start is its approach point
   finish_for_machine(p, s_->machine);  // per layer: a strand never spans two
+  throw_if_idle_head_drags(s_->idle, p, s_->machine, s_->options.arc_tolerance_mm);
   return p;
 }
 

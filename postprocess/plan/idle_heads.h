@@ -1,0 +1,94 @@
+// Idle printheads against the print (issue 33). The heads of a machine ride one carriage:
+// while head A deposits, every other head B travels with it, its tip at A's tip plus
+// (offset B - offset A) and held idle_lift_mm higher. A tip that comes down to the beads
+// already laid under it (this layer's so far and the earlier layers') drags through the
+// print. The planner refuses such a job (throw_if_idle_head_drags); `strand check` counts the
+// places (check_stream.h). Beads are kept in a uniform grid of cells, each with the highest
+// bead top in it, so a query looks at a cell's beads only when they reach the tip's height.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "machines/profile.h"
+#include "slicer/motion.h"
+
+namespace strand::post {
+
+// One place where an idle head's tip meets the print (the first of a move, per idle head).
+struct IdleHeadHit {
+  int layer = 0;
+  int tool = 0;         // the idle head
+  int active_tool = 0;  // the head depositing
+  slicer::Vec3 tip_mm = slicer::Vec3::Zero();  // the idle tip where it meets the beads (bed frame)
+  double bead_top_mm = 0.0;                    // the top of the bead it meets
+  std::size_t move = 0;                        // index of the deposit move of the active head
+  int line = 0;                                // its G-code line, when known
+};
+
+class IdleHeadCheck {
+ public:
+  // Clearance the idle tip keeps above bead tops: 0.1 mm (the uncertainty of a tip height
+  // measured with a calibration print), at most half the layer height, so that a tip level
+  // with the depositing one is never flagged over the layer below (where that one runs).
+  static constexpr double kClearanceMm = 0.1;
+  static constexpr std::size_t kMaxHits = 20;  // hits kept; all are counted
+
+  // The machine's heads: their offsets, idle lifts and nozzles. Active only with two heads
+  // or more at different places.
+  explicit IdleHeadCheck(const machines::MachineProfile& machine);
+  bool active() const { return active_; }
+
+  // The next move in program order. `from_tip`/`to_tip`: where the depositing head's tip goes
+  // (bed frame); `layer_height_mm` 0 when unknown. Only Deposit moves are judged and kept;
+  // arcs must already be flattened into chords (add one call per chord).
+  void add(const slicer::Vec3& from_tip, const slicer::Vec3& to_tip, const slicer::Move& mv,
+           double layer_height_mm, std::size_t move, int line);
+
+  const std::vector<IdleHeadHit>& hits() const { return hits_; }
+  std::size_t hit_count() const { return hit_count_; }
+
+ private:
+  struct Bead {
+    slicer::Vec2 a, b;
+    float half_width;
+    double top;
+  };
+  struct Cell {
+    double max_top = -1e30;
+    std::vector<std::uint32_t> beads;
+  };
+  std::int64_t key(std::int64_t i, std::int64_t j) const { return (i << 32) ^ (j & 0xffffffff); }
+  std::int64_t cell_of(double v) const;
+  // The highest bead top within `reach` (+ each bead's half width) of the segment p-q that
+  // reaches `floor` or above; `floor` - 1 when none.
+  double highest_near(const slicer::Vec2& p, const slicer::Vec2& q, double reach, double floor,
+                      slicer::Vec2& where) const;
+  void insert(const slicer::Vec2& a, const slicer::Vec2& b, double width, double top);
+
+  struct Head {
+    slicer::Vec3 offset;
+    double lift = 0.0, tip_radius = 0.0;
+  };
+  std::vector<Head> heads_;
+  bool active_ = false;
+  double cell_mm_ = 2.0;
+  double max_half_width_ = 0.0;
+  bool rising_ = true;  // every bead so far at or above the ones before (tops in program order)
+  double last_top_ = -1e30;
+  std::vector<Bead> beads_;
+  std::unordered_map<std::int64_t, Cell> cells_;
+  std::vector<IdleHeadHit> hits_;
+  std::size_t hit_count_ = 0;
+};
+
+// The planner's use: a planned program's moves in the carriage frame (each head's tip at the
+// carriage plus its offset), fed to `check` in order from `start_mm`; throws InputError at the
+// first idle head that would drag, naming the heads, the layer and the remedy.
+void throw_if_idle_head_drags(IdleHeadCheck& check, const slicer::MotionProgram& piece,
+                              const machines::MachineProfile& machine, double arc_tolerance_mm);
+
+}  // namespace strand::post
