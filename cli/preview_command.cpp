@@ -10,6 +10,7 @@
 #include "cli/output_path.h"
 #include "cli/progress_bar.h"
 #include "jobs/curved_preview.h"
+#include "jobs/slice_placement.h"
 #include "postprocess/inspect/curved_files.h"
 #include "postprocess/inspect/gcode_parser.h"
 #include "postprocess/preview/preview_gltf.h"
@@ -38,6 +39,7 @@ struct PreviewArgs {
   bool lines = false;
   bool marks = false;
   std::string size = "1200x700";
+  std::string mesh_from;  // a `strand slice --report` file: its part drawn under the paths (.html)
   double arc_tolerance_mm = slicer::kDefaultArcToleranceMm;
 };
 
@@ -82,6 +84,15 @@ int write_viewer(const PreviewArgs& a, const std::string& text, bool curved, Pha
     const std::string what = e.what();
     throw InputError(what.rfind("input = ", 0) == 0 ? what : "input = " + a.input + ": " + what);
   }
+  if (!a.mesh_from.empty()) {  // the part a slice recorded, placed as it was sliced
+    const nlohmann::json report = slicer::parse_json(slicer::read_file(a.mesh_from), "mesh-from = " + a.mesh_from);
+    if (!report.is_object() || !report.contains("mesh_placement"))
+      throw InputError("mesh-from = " + a.mesh_from + ": no mesh_placement (not a report of strand slice --report)");
+    jobs::PlacedMesh m = jobs::placed_mesh_from(report["mesh_placement"], "");
+    if (!m.note.empty()) std::cerr << "strand: " << m.note << "\n";
+    (report["mesh_placement"].value("role", "") == "substrate" ? data.substrate : data.part) = std::move(m.mesh);
+    data.part_note = m.note;
+  }
   slicer::progress_phase(progress, "drawing");
   slicer::OutputFiles out;
   out.protect_input(a.input);
@@ -116,6 +127,7 @@ int run(PreviewArgs a) {
   if (curved && a.marks)
     throw InputError("marks: only for flat G-code (a curved file is checked with strand check)");
   if (ext == ".html") return write_viewer(a, gcode, curved, progress.get());
+  if (!a.mesh_from.empty()) throw InputError("mesh-from = " + a.mesh_from + ": only for the 3D viewer (-o x.html)");
   post::ParsedGcode parsed;
   slicer::progress_phase(progress.get(), "parsing");
   try {  // errors name the file as strand check names it
@@ -164,6 +176,8 @@ void add_preview_command(CLI::App& app, Action& action) {
   sub->add_option("--view", a->view, "top, iso or both side by side (png/svg; default both)");
   sub->add_flag("--travel", a->travel, "also draw travel moves (png/svg)");
   sub->add_flag("--marks", a->marks, "circle crossings (red) and touches (orange) found by strand check (png/svg)");
+  sub->add_option("--mesh-from", a->mesh_from,
+                  "html: draw the part a `strand slice --report` file records (its mesh file, placed as sliced)");
   sub->add_flag("--lines", a->lines, "glb: strands as lines instead of tubes");
   sub->add_option("--size", a->size, "image size WxH in pixels (png/svg; default 1200x700)");
   add_quantity_option(sub, "--arc-tolerance", a->arc_tolerance_mm, "mm", "chord error when drawing G2/G3 arcs [mm] (default 0.01)");

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "jobs/curved_preview.h"
+#include "jobs/slice_placement.h"
 #include "machines/profile.h"
 #include "postprocess/inspect/curved_files.h"
 #include "postprocess/preview/viewer_data.h"
@@ -51,6 +52,26 @@ post::ViewerData build(const fs::path& dir, const std::string& name, const std::
   } catch (const std::exception&) {
   }
   return post::viewer_data_from_gcode(text, m.get(), tol, name);
+}
+
+// A slice's part (or --onto substrate) read from the job's kept input file and placed as its
+// report's "mesh_placement" records (jobs/slice_placement.h); other jobs have none.
+void add_slice_mesh(post::ViewerData& data, const fs::path& dir) {
+  const fs::path report = dir / "report.json";
+  if (!fs::is_regular_file(report)) return;
+  const json r = json::parse(slicer::read_file(report.string()), nullptr, false);
+  if (!r.is_object() || !r.contains("mesh_placement")) return;
+  const json& placement = r["mesh_placement"];
+  try {
+    jobs::PlacedMesh m = jobs::placed_mesh_from(placement, dir.string());
+    (placement.value("role", "") == "substrate" ? data.substrate : data.part) = std::move(m.mesh);
+    data.part_note = m.note;
+  } catch (const InputError& e) {  // named without the data directory
+    std::string what = e.what();
+    for (auto at = what.find(dir.string() + "/"); at != std::string::npos; at = what.find(dir.string() + "/"))
+      what.erase(at, dir.string().size() + 1);
+    data.part_note = "the mesh is not drawn: " + what;
+  }
 }
 
 std::size_t layer_param(const Request& r, const std::string& key, std::size_t layers) {
@@ -98,6 +119,7 @@ Response Api::State::route_view(const Request& r) {
     std::lock_guard<std::mutex> lock(build_mu);
     if (!fs::is_regular_file(cache / "index.json")) {
       post::ViewerData data = build(job_dir(id), name, result.value("job", json::object()).value("machine", ""));
+      add_slice_mesh(data, job_dir(id));
       fs::create_directories(cache);
       slicer::write_file_atomic((cache / "blocks.bin").string(), data.blocks);
       index = post::viewer_index(data);

@@ -195,13 +195,25 @@ class Viewer {
     const [lo, hi] = [new THREE.Vector3(...idx.bounds.min), new THREE.Vector3(...idx.bounds.max)];
     const centre = lo.clone().add(hi).multiplyScalar(0.5);
     const size = Math.max(hi.clone().sub(lo).length(), 1);
-    if (idx.substrate) {
+    // The substrate, or a slice's part, translucent and not writing depth: the paths inside
+    // and behind it stay visible.
+    const translucent = (m, opacity) => {
       const g = new THREE.BufferGeometry();
-      g.setAttribute("position", new THREE.Float32BufferAttribute(idx.substrate.v, 3));
-      g.setIndex(idx.substrate.t);
+      g.setAttribute("position", new THREE.Float32BufferAttribute(m.v, 3));
+      g.setIndex(m.t);
       g.computeVertexNormals();
-      scene.add(new THREE.Mesh(g, new THREE.MeshLambertMaterial({ color: 0x8899aa, transparent: true, opacity: 0.3, depthWrite: false, side: THREE.DoubleSide })));
-      scene.add(new THREE.AmbientLight(0xffffff, 1.5), new THREE.DirectionalLight(0xffffff, 1.5));
+      const mesh = new THREE.Mesh(g, new THREE.MeshLambertMaterial({ color: 0x8899aa, transparent: true, opacity, depthWrite: false, side: THREE.DoubleSide }));
+      scene.add(mesh, new THREE.AmbientLight(0xffffff, 1.5), new THREE.DirectionalLight(0xffffff, 1.5));
+      return mesh;
+    };
+    if (idx.part) {  // with a check box to take it away
+      const part = translucent(idx.part, 0.2);  // lighter: the paths fill it
+      const box = el("input", { type: "checkbox", id: "part-mesh", checked: "" });
+      box.addEventListener("change", () => { part.visible = box.checked; this.render(); });
+      this.travel.parentElement.after(el("label", {}, box, "part mesh"));
+    }
+    if (idx.substrate) {
+      translucent(idx.substrate, 0.3);
     } else {  // the bed: a grid under the part
       const grid = new THREE.GridHelper(size * 1.2, 12, 0xb0b4bc, 0xd4d7dd);
       grid.rotation.x = Math.PI / 2;
@@ -349,7 +361,8 @@ async function main() {
     await v.load();
     await frame;
     const ms = performance.now() - v.t0;
-    v.status.textContent = `drawn: ${v.idx.segments} segments, layers 0-${v.idx.layers.length - 1} in ${Math.round(ms)} ms`;
+    v.status.textContent = `drawn: ${v.idx.segments} segments, layers 0-${v.idx.layers.length - 1} in ${Math.round(ms)} ms` +
+      (v.idx.part_note ? `; ${v.idx.part_note}` : "");
     v.status.dataset.ms = String(Math.round(ms));
   } catch (e) {
     v.status.textContent = `error: ${e.message}`;

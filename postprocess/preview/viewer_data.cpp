@@ -108,6 +108,17 @@ std::uint8_t kind_of(slicer::Feature f, bool travel) {
 
 std::uint8_t tool_of(int tool) { return static_cast<std::uint8_t>(std::clamp(tool, 0, 255)); }
 
+// {"v": [x, y, z, ...], "t": [i, j, k, ...]}; `rounded`: to 0.1 um (a part of a few hundred
+// thousand triangles travels in half the text).
+nlohmann::json mesh_json(const slicer::TriangleMesh& m, bool rounded) {
+  nlohmann::json v = nlohmann::json::array(), t = nlohmann::json::array();
+  for (const auto& p : m.vertices_mm) {
+    for (int k = 0; k < 3; ++k) v.push_back(rounded ? std::round(p[k] * 1e4) / 1e4 : p[k]);
+  }
+  for (const auto& f : m.triangles) t.push_back(f[0]), t.push_back(f[1]), t.push_back(f[2]);
+  return {{"v", v}, {"t", t}};
+}
+
 }  // namespace
 
 std::size_t viewer_block_bytes(std::size_t segments) {
@@ -250,12 +261,9 @@ nlohmann::json viewer_index(const ViewerData& d) {
       j["pens"].push_back({{"name", k.name}, {"colour", hex_colour(k.colour)}});
     }
   }
-  if (!d.substrate.vertices_mm.empty()) {
-    json v = json::array(), t = json::array();
-    for (const auto& p : d.substrate.vertices_mm) v.push_back(p.x()), v.push_back(p.y()), v.push_back(p.z());
-    for (const auto& f : d.substrate.triangles) t.push_back(f[0]), t.push_back(f[1]), t.push_back(f[2]);
-    j["substrate"] = {{"v", v}, {"t", t}};
-  }
+  if (!d.substrate.vertices_mm.empty()) j["substrate"] = mesh_json(d.substrate, false);
+  if (!d.part.vertices_mm.empty()) j["part"] = mesh_json(d.part, true);
+  if (!d.part_note.empty()) j["part_note"] = d.part_note;
   return j;
 }
 

@@ -56,6 +56,8 @@ struct ViewerData {
   bool trapezoid_time = false;   // time_s is the machine's trapezoidal estimate
   std::string layer_value = "z";  // "z" or "offset" (pose programs: distance from the substrate)
   slicer::TriangleMesh substrate;  // drawn translucent beneath; empty for planar files
+  slicer::TriangleMesh part;       // a slice's part, drawn translucent on the bed; or empty
+  std::string part_note;           // why a slice's part is not drawn, or empty
   bool pens = false;                     // some deposits are pen strokes
   std::vector<std::string> pen_colours;  // as ParsedGcode::pen_colours
   int max_tool = 0;                      // highest tool of a deposit
@@ -74,7 +76,8 @@ ViewerData viewer_data_from_scene(const PreviewScene& scene, const std::string& 
 // deposit_length_mm, travel_length_mm, time_s, e), "bounds", "features", "feed_max",
 // "flow_max", "bead_width_mm", "layer_value", "time", "segments", "source", "pens" (for pen
 // drawings: each pen's legend name and colour, as deposit_key gives them), and "substrate"
-// ({"v": [x, y, z, ...], "t": [i, j, k, ...]}) when there is one.
+// ({"v": [x, y, z, ...], "t": [i, j, k, ...]}) when there is one; "part" (the same, vertices
+// to 0.1 um) and "part_note" for a slice's part.
 nlohmann::json viewer_index(const ViewerData& data);
 // The bytes of layers [from, to] (the caller checks the range).
 std::string_view viewer_blocks(const ViewerData& data, std::size_t from, std::size_t to);

@@ -77,6 +77,39 @@ TEST_F(ViewApiTest, BadRangesAndMethodsAreRefused) {
   EXPECT_NE(script.body.find("Three.js Authors"), std::string::npos) << "three.js is bundled, with its licence";
 }
 
+// A sliced part (turned, stood up, scaled to fit) is drawn from its kept upload as the report's
+// placement puts it: the part's size, on the bed; a generator job has no part.
+TEST_F(ViewApiTest, ASliceShowsItsPartOnTheBedAndAGeneratorJobNone) {
+  const auto [body, type] = strand::testing::multipart_body(
+      {{"file", strand::testing::slurp(std::string(STRAND_SOURCE_DIR) + "/samples/meshes/bone-plug.stl"), "plug.stl"},
+       {"nozzle", "0.84"}, {"gap", "1.6"}, {"rotate", "0,0,30"}, {"up", "y"}, {"scale-to-fit", "16x16x16"}});
+  const auto slice = http_request(port_, "POST", "/api/slice", body, type);
+  ASSERT_EQ(slice.status, 201) << slice.body;
+  const std::string id = std::to_string(slice.j().at("id").get<int>());
+  const json report = json::parse(get("/api/jobs/" + id + "/files/report.json").body);
+  EXPECT_EQ(report.at("mesh_placement").at("files"), json::array({slice.j().at("job").at("input")}));
+  const auto r = get("/api/jobs/" + id + "/view");
+  ASSERT_EQ(r.status, 200) << r.body;
+  const json index = r.j();
+  ASSERT_TRUE(index.contains("part")) << r.body.substr(0, 400);
+  EXPECT_FALSE(index.contains("part_note"));
+  const json& v = index.at("part").at("v");
+  ASSERT_GT(v.size(), 9u);
+  EXPECT_EQ(index.at("part").at("t").size() % 3, 0u);
+  double lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9};
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    lo[i % 3] = std::min(lo[i % 3], v[i].get<double>());
+    hi[i % 3] = std::max(hi[i % 3], v[i].get<double>());
+  }
+  const json& size = report.at("derived").at("size_mm");
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(hi[k] - lo[k], size.at(k).get<double>(), 0.01) << "axis " << k;
+  EXPECT_NEAR(lo[2], 0.0, 0.01) << "the part sits on the bed";
+  EXPECT_NEAR((lo[0] + hi[0]) / 2, 0.0, 0.01) << "centred as sliced (the delta's centre)";
+  const json generator = get("/api/jobs/1/view").j();
+  EXPECT_FALSE(generator.contains("part"));
+  EXPECT_FALSE(generator.contains("part_note"));
+}
+
 TEST_F(ViewApiTest, BrowserMovesTheSliderAndReadsTheLayerStats) {
   // The standalone page of the same G-code, opened by the script from disk.
   const std::string gcode = get("/api/jobs/1/files/scaffold.gcode").body;
