@@ -56,9 +56,30 @@ std::string head_name(const machines::MachineProfile& m, int tool) {
 
 }  // namespace
 
-IdleHeadCheck::IdleHeadCheck(const machines::MachineProfile& m) {
+IdleHeadCheck::IdleHeadCheck(const machines::MachineProfile& m, std::size_t keep_beads) : keep_beads_(keep_beads) {
   for (const auto& t : m.tools) heads_.push_back({t.offset_mm, t.idle_lift_mm, t.nozzle_mm / 2});
   for (const Head& h : heads_) active_ = active_ || (h.offset - heads_.front().offset).norm() > 1e-9;
+  bool first = true;
+  for (const Head& a : heads_) {
+    for (const Head& b : heads_) {
+      if ((b.offset - a.offset).norm() <= 1e-9) continue;
+      const double rel = b.offset.z() - a.offset.z() + b.lift;
+      lowest_rel_ = first ? rel : std::min(lowest_rel_, rel);
+      first = false;
+    }
+  }
+}
+
+void IdleHeadCheck::drop_below(double floor) {
+  std::vector<Bead> kept;
+  for (const Bead& b : beads_) {
+    if (b.top >= floor) kept.push_back(b);
+  }
+  beads_.clear();
+  cells_.clear();
+  max_half_width_ = 0.0;
+  for (const Bead& b : kept) insert(b.a, b.b, 2.0 * b.half_width, b.top);
+  kept_after_drop_ = beads_.size();
 }
 
 std::int64_t IdleHeadCheck::cell_of(double v) const {
@@ -119,6 +140,12 @@ void IdleHeadCheck::add(const Vec3& from, const Vec3& to, const slicer::Move& mv
   const int a = mv.tool;
   const Vec3 own = a >= 0 && a < static_cast<int>(heads_.size()) ? heads_[static_cast<std::size_t>(a)].offset : Vec3::Zero();
   const double clearance = layer_height_mm > 0 ? std::min(kClearanceMm, layer_height_mm / 2) : kClearanceMm;
+  if (mv.layer != layer_) {  // a new layer: in a rising print the beads far below can go
+    layer_ = mv.layer;
+    const double lowest = std::min(from.z(), to.z());
+    if (rising_ && lowest >= last_top_ - 1e-6 && beads_.size() > std::max(keep_beads_, 2 * kept_after_drop_))
+      drop_below(lowest + lowest_rel_ - kClearanceMm - 1e-6);
+  }
   for (std::size_t k = 0; k < heads_.size(); ++k) {
     if (static_cast<int>(k) == a) continue;
     const Head& h = heads_[k];

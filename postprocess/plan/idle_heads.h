@@ -36,11 +36,17 @@ class IdleHeadCheck {
   // with the depositing one is never flagged over the layer below (where that one runs).
   static constexpr double kClearanceMm = 0.1;
   static constexpr std::size_t kMaxHits = 20;  // hits kept; all are counted
+  // Beyond this many beads, while the print only rises, the beads no idle tip can come down
+  // to again (below the lowest tip height of the layer begun, less the clearance) are
+  // dropped at each new layer: memory stays about a few layers', not the file's.
+  static constexpr std::size_t kKeepBeads = 1u << 20;
 
   // The machine's heads: their offsets, idle lifts and nozzles. Active only with two heads
   // or more at different places.
-  explicit IdleHeadCheck(const machines::MachineProfile& machine);
+  // `keep_beads`: kKeepBeads but in tests.
+  explicit IdleHeadCheck(const machines::MachineProfile& machine, std::size_t keep_beads = kKeepBeads);
   bool active() const { return active_; }
+  std::size_t beads_held() const { return beads_.size(); }
 
   // The next move in program order. `from_tip`/`to_tip`: where the depositing head's tip goes
   // (bed frame); `layer_height_mm` 0 when unknown. Only Deposit moves are judged and kept;
@@ -68,6 +74,7 @@ class IdleHeadCheck {
   double highest_near(const slicer::Vec2& p, const slicer::Vec2& q, double reach, double floor,
                       slicer::Vec2& where) const;
   void insert(const slicer::Vec2& a, const slicer::Vec2& b, double width, double top);
+  void drop_below(double floor);
 
   struct Head {
     slicer::Vec3 offset;
@@ -79,6 +86,9 @@ class IdleHeadCheck {
   double max_half_width_ = 0.0;
   bool rising_ = true;  // every bead so far at or above the ones before (tops in program order)
   double last_top_ = -1e30;
+  double lowest_rel_ = 0.0;  // the lowest idle tip relative to the depositing one (z offsets, lifts)
+  int layer_ = -2;           // the layer of the last deposit
+  std::size_t kept_after_drop_ = 0, keep_beads_ = kKeepBeads;
   std::vector<Bead> beads_;
   std::unordered_map<std::int64_t, Cell> cells_;
   std::vector<IdleHeadHit> hits_;

@@ -97,6 +97,20 @@ TEST(IdleHeads, ALowerIdleNozzleMeetsTheLayerBelowAndAnEarlierTallerObject) {
   EXPECT_NEAR(sequential.hits().front().bead_top_mm, 5.0, 1e-9);
 }
 
+TEST(IdleHeads, ARisingPrintDropsTheBeadsNoIdleTipComesDownToAndStillFindsTheLayerOn) {
+  IdleHeadCheck c(two_heads(0.0, -0.5), 8);  // head 2 0.5 mm low: two layers down matter
+  for (int k = 0; k < 30; ++k) {
+    const double z = 0.4 * (k + 1);
+    for (int row = 0; row < 4; ++row) bead(c, 1, {0, 3.0 * row, z}, {20, 3.0 * row, z}, k);
+  }
+  EXPECT_EQ(c.hit_count(), 0u);
+  EXPECT_LE(c.beads_held(), 16u) << "two layers' rows, not thirty";
+  bead(c, 0, {0, 0.3, 12.4}, {10, 0.3, 12.4}, 30);  // head 2 idle 35 mm on: nothing there
+  EXPECT_EQ(c.hit_count(), 0u);
+  bead(c, 0, {-30, 0.3, 12.4}, {-25, 0.3, 12.4}, 30);  // head 2 over layer 29's row, 0.1 mm into it
+  EXPECT_EQ(c.hit_count(), 1u);
+}
+
 TEST(IdleHeads, OneHeadOrHeadsSharingANozzleAreNotChecked) {
   machines::MachineProfile one;
   EXPECT_FALSE(IdleHeadCheck(one).active());
