@@ -1,11 +1,35 @@
 # Writes OUT: a C++ table of the workbench pages in DIR (name, text), served by `strand serve`
-# from the binary (no files to install, no network).
+# from the binary (no files to install, no network). Every page shares its head and bar:
+# `<!--strand:head TITLE-->` becomes _head.html (doctype, title "Strand workbench: TITLE",
+# viewport, the common style) and `<!--strand:nav PATH-->` becomes _nav.html with the link to
+# PATH marked as the current page. Files starting with "_" are these pieces, not pages.
+file(READ ${DIR}/_head.html head_html)
+file(READ ${DIR}/_nav.html nav_html)
+string(STRIP "${nav_html}" nav_html)
 set(body "// Generated from serve/pages/*; do not edit.\n#include \"serve/pages.h\"\n\nnamespace strand::serve {\n\nconst std::vector<Page>& pages() {\n  static const std::vector<Page> kPages = {\n")
 file(GLOB FILES ${DIR}/*.html)
 list(SORT FILES)
 foreach(f ${FILES})
   get_filename_component(name ${f} NAME)
+  if(name MATCHES "^_")
+    continue()
+  endif()
   file(READ ${f} text)
+  if(NOT text MATCHES "<!--strand:head ([^>]*)-->")
+    message(FATAL_ERROR "${name}: no <!--strand:head TITLE--> line")
+  endif()
+  string(REPLACE "@TITLE@" "${CMAKE_MATCH_1}" page_head "${head_html}")
+  string(STRIP "${page_head}" page_head)
+  string(REPLACE "<!--strand:head ${CMAKE_MATCH_1}-->" "${page_head}" text "${text}")
+  if(NOT text MATCHES "<!--strand:nav ([^>]*)-->")
+    message(FATAL_ERROR "${name}: no <!--strand:nav PATH--> line")
+  endif()
+  set(current "${CMAKE_MATCH_1}")
+  set(page_nav "${nav_html}")
+  if(NOT current STREQUAL "")
+    string(REPLACE "<a href=\"${current}\">" "<a href=\"${current}\" aria-current=\"page\">" page_nav "${nav_html}")
+  endif()
+  string(REPLACE "<!--strand:nav ${current}-->" "${page_nav}" text "${text}")
   string(APPEND body "      {\"${name}\", R\"strand_page(${text})strand_page\"},\n")
 endforeach()
 string(APPEND body "  };\n  return kPages;\n}\n\n}  // namespace strand::serve\n")
