@@ -75,25 +75,6 @@ std::vector<int> object_tools(const nlohmann::json& tools, std::size_t count) {
   return out;
 }
 
-// Greedy order from `at`: the nearest start (or end, reversed) next; `at` ends where it ends.
-std::vector<slicer::Stroke> nearest_first(std::vector<slicer::Stroke> strokes, slicer::Vec2& at) {
-  std::vector<slicer::Stroke> out;
-  while (!strokes.empty()) {
-    std::size_t best = 0;
-    bool flip = false;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < strokes.size(); ++i) {
-      const double ds = (strokes[i].start_mm - at).norm(), de = (strokes[i].end_mm() - at).norm();
-      if (ds < best_d - 1e-9) best_d = ds, best = i, flip = false;
-      if (de < best_d - 1e-9) best_d = de, best = i, flip = true;
-    }
-    out.push_back(flip ? slicer::reversed(strokes[best]) : strokes[best]);
-    at = out.back().end_mm();
-    strokes.erase(strokes.begin() + static_cast<std::ptrdiff_t>(best));
-  }
-  return out;
-}
-
 // Each object's fill, its strokes tagged with the object's index in fill() and given the
 // object's tool in layer_from(); the sums come from a source over all objects together.
 class ObjectsFill final : public patterns::PartFillSource {
@@ -153,7 +134,7 @@ class ObjectsFill final : public patterns::PartFillSource {
     slicer::Layer layer = whole_->layer_from(k, std::move(f));  // z, height and the sums
     layer.strokes.clear();
     for (int t : order) {
-      for (auto& s : nearest_first(std::move(by_tool[static_cast<std::size_t>(t)]), at_)) layer.strokes.push_back(std::move(s));
+      for (auto& s : slicer::nearest_first(std::move(by_tool[static_cast<std::size_t>(t)]), at_)) layer.strokes.push_back(std::move(s));
       tool_ = t;
     }
     if (k + 1 == layer_count()) record.derived.update(whole_->record.derived);

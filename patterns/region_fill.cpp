@@ -60,25 +60,6 @@ double line_length(const PatternLine& l) {
   return len;
 }
 
-// Greedy order from `at`: the nearest start (or end, reversed) next.
-std::vector<slicer::Stroke> ordered(std::vector<slicer::Stroke> strokes, Vec2 at) {
-  std::vector<slicer::Stroke> out;
-  while (!strokes.empty()) {
-    std::size_t best = 0;
-    bool flip = false;
-    double best_d = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < strokes.size(); ++i) {
-      const double ds = (strokes[i].start_mm - at).norm(), de = (strokes[i].end_mm() - at).norm();
-      if (ds < best_d - 1e-9) best_d = ds, best = i, flip = false;
-      if (de < best_d - 1e-9) best_d = de, best = i, flip = true;
-    }
-    out.push_back(flip ? slicer::reversed(strokes[best]) : strokes[best]);
-    at = out.back().end_mm();
-    strokes.erase(strokes.begin() + static_cast<std::ptrdiff_t>(best));
-  }
-  return out;
-}
-
 }  // namespace
 
 LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, int perimeters,
@@ -133,7 +114,8 @@ class PartFillLayers final : public PartFillSource {
   const Region& region(std::size_t k) const override { return part_.layers.at(k); }
 
   slicer::Layer layer_from(std::size_t k, LayerFill f) override {
-    slicer::Layer layer{z_of(k), p_.layer_height_mm, ordered(std::move(f.strokes), at_)};
+    slicer::Vec2 at = at_;
+    slicer::Layer layer{z_of(k), p_.layer_height_mm, slicer::nearest_first(std::move(f.strokes), at)};
     if (!layer.strokes.empty()) at_ = layer.strokes.back().end_mm();
     for (const auto& s : layer.strokes) deposited_ += slicer::stroke_length(s);
     pattern_length_ += f.pattern_length_mm;

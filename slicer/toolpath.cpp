@@ -121,6 +121,24 @@ Stroke reversed(const Stroke& s) {
   return r;
 }
 
+std::vector<Stroke> nearest_first(std::vector<Stroke> strokes, Vec2& at) {
+  std::vector<Stroke> out;
+  while (!strokes.empty()) {
+    std::size_t best = 0;
+    bool flip = false;
+    double best_d = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < strokes.size(); ++i) {
+      const double ds = (strokes[i].start_mm - at).norm(), de = (strokes[i].end_mm() - at).norm();
+      if (ds < best_d - 1e-9) best_d = ds, best = i, flip = false;
+      if (de < best_d - 1e-9) best_d = de, best = i, flip = true;
+    }
+    out.push_back(flip ? reversed(strokes[best]) : strokes[best]);
+    at = out.back().end_mm();
+    strokes.erase(strokes.begin() + static_cast<std::ptrdiff_t>(best));
+  }
+  return out;
+}
+
 nlohmann::json to_json(const Toolpath& t) {
   nlohmann::json layers = nlohmann::json::array();
   for (const auto& layer : t.layers) {

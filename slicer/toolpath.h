@@ -81,6 +81,9 @@ double stroke_length(const Stroke& s);
 std::pair<Vec2, Vec2> bounds(const Toolpath& t);
 // Reverses a stroke in place (arcs flip direction).
 Stroke reversed(const Stroke& s);
+// Greedy order from `at`: the nearest start (or end, the stroke reversed) next; `at` ends where
+// the last stroke ends.
+std::vector<Stroke> nearest_first(std::vector<Stroke> strokes, Vec2& at);
 
 nlohmann::json to_json(const Toolpath& t);
 
