@@ -15,6 +15,8 @@
 #include "postprocess/inspect/gcode_parser.h"
 #include "postprocess/preview/preview_html.h"
 #include "postprocess/preview/preview_image.h"
+#include "postprocess/preview/viewer_data.h"
+#include "postprocess/preview/viewer_html.h"
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
 #include "slicer/json_input.h"
@@ -239,7 +241,15 @@ void bind_result(py::module_& m) {
              return std::vector<double>{s.x(), s.y(), s.z()};
            })
       .def("check_json", &check_json, py::call_guard<py::gil_scoped_release>())
+      // The 3D viewer `strand preview -o x.html` writes (three.js inlined: about 0.6 MB).
       .def("preview_html", [](const RawResult& r, const std::string& title) {
+             py::gil_scoped_release release;
+             return post::render_viewer_html(
+                 post::viewer_data_from_gcode(r.gcode, nullptr, slicer::kDefaultArcToleranceMm, title),
+                 title);
+           })
+      // The light canvas page a job's preview.html is (a notebook's inline frame).
+      .def("preview_page_html", [](const RawResult& r, const std::string& title) {
              const post::PreviewScene scene = scene_of(r);
              py::gil_scoped_release release;
              return post::render_html(scene, title);

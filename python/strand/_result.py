@@ -189,8 +189,9 @@ class Result:
     def _repr_html_(self):
         rows = "".join(f"<tr><td>{html.escape(str(k))}</td><td>{html.escape(str(v))}</td></tr>"
                        for k, v in self.summary.items())
+        # the light canvas page (a job's preview.html), not the 0.6 MB 3D viewer, in every frame
         return (f"<b>{html.escape(self.name)}</b><table>{rows}</table>"
-                + self.preview("html")._repr_html_())
+                + Html(self._raw.preview_page_html(self.name))._repr_html_())
 
     def __repr__(self):
         s = self.summary
