@@ -106,8 +106,12 @@ TEST(SliceObjects, TwoObjectsInTwoHeadsOneStrandEachNoCrossing) {
     if (m.kind == slicer::MoveKind::Deposit) {
       length[m.tool] += (m.end_mm - at).head<2>().norm();
       const double x = m.end_mm.x();
-      if (m.tool == 1) EXPECT_TRUE(x > 89.0 && x < 99.0) << x;
-      if (m.tool == 0) EXPECT_TRUE(x > 101.0 && x < 111.0) << x;
+      if (m.tool == 1) {
+        EXPECT_TRUE(x > 89.0 && x < 99.0) << x;
+      }
+      if (m.tool == 0) {
+        EXPECT_TRUE(x > 101.0 && x < 111.0) << x;
+      }
     }
     if (m.kind == slicer::MoveKind::Deposit || m.kind == slicer::MoveKind::Travel) at = m.end_mm;
   }
