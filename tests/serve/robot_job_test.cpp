@@ -97,7 +97,6 @@ std::vector<Entry> unzip(const std::string& archive) {
 class RobotJobTest : public strand::testing::ServeFixture {
  protected:
   void SetUp() override { start_server("robot-job"); }
-  std::string url(const std::string& path) const { return "http://127.0.0.1:" + std::to_string(port_) + path; }
   void expect_nothing_saved() {
     EXPECT_EQ(get(port_, "/api/jobs").j().at("jobs").size(), 0u);
     const fs::path jobs = fs::path(dir_) / "data" / "jobs";

@@ -46,7 +46,6 @@ std::string source(const std::string& path) { return slurp(std::string(STRAND_SO
 class SliceApiTest : public strand::testing::ServeFixture {
  protected:
   void SetUp() override { start_server("slice"); }
-  std::string url(const std::string& path) const { return "http://127.0.0.1:" + std::to_string(port_) + path; }
   // No job in the gallery and no job directory: a refused request left nothing behind.
   void expect_nothing_saved() {
     EXPECT_EQ(get(port_, "/api/jobs").j().at("jobs").size(), 0u);

@@ -32,12 +32,17 @@ const std::string kSweep = R"({"job": {"generator": "scaffold", "machine": "delt
   "params": {"nozzle": 0.84, "size": "20x20", "layers": 2}, "output": "../../escaped.gcode"},
   "vary": {"gap": [1.2, 1.6]}})";
 
+// The sweep's base job as a saved design: gap 1.6, named "two layers".
+json two_layer_design() {
+  json design = json::parse(kSweep).at("job");
+  design["params"]["gap"] = 1.6;
+  design["name"] = "two layers";
+  return design;
+}
+
 class SweepApiTest : public strand::testing::ServeFixture {
  protected:
   void SetUp() override { start_server("sweep-api"); }
-  std::string url(const std::string& path) const {
-    return "http://127.0.0.1:" + std::to_string(port_) + path;
-  }
   strand::testing::HttpReply post(const json& body) {
     return http_request(port_, "POST", "/api/sweeps", body.dump());
   }
@@ -142,9 +147,7 @@ TEST_F(SweepApiTest, GalleryShowsTheGroupCard) {
 // which tells done of total while it runs and the points once it has finished; the points'
 // G-code is the saved job's with only the varied parameter changed.
 TEST_F(SweepApiTest, SweepFromASavedJobReportsProgress) {
-  json design = json::parse(kSweep).at("job");
-  design["params"]["gap"] = 1.6;
-  design["name"] = "two layers";
+  json design = two_layer_design();
   const auto saved = http_request(port_, "POST", "/api/jobs", design.dump());
   ASSERT_EQ(saved.status, 201) << saved.body;
   const std::int64_t job = saved.j().at("id");
@@ -207,9 +210,7 @@ TEST_F(SweepApiTest, FromJobRefusalsNameTheKey) {
 // The sweep page in Chromium (tests/serve/browser/sweep.py): a saved design chosen as the base,
 // its gap varied, the run followed to 3 of 3, the contact sheet and the scatter shown.
 TEST_F(SweepApiTest, BrowserSweepsASavedDesign) {
-  json design = json::parse(kSweep).at("job");
-  design["params"]["gap"] = 1.6;
-  design["name"] = "two layers";
+  json design = two_layer_design();
   const auto saved = http_request(port_, "POST", "/api/jobs", design.dump());
   ASSERT_EQ(saved.status, 201) << saved.body;
   const std::string page = url("/sweep?job=" + std::to_string(saved.j().at("id").get<int>()));

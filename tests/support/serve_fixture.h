@@ -23,6 +23,10 @@ class ServeFixture : public ::testing::Test {
     port_ = server_->start();
     ASSERT_GT(port_, 0);
   }
+  // The server's address of `path` ("/sweep?job=1"), for a browser.
+  std::string url(const std::string& path) const {
+    return "http://127.0.0.1:" + std::to_string(port_) + path;
+  }
   void TearDown() override {
     if (server_) server_->stop();
   }
