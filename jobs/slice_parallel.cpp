@@ -6,6 +6,7 @@
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
+#include <atomic>
 #include <exception>
 
 namespace strand::jobs {
@@ -65,11 +66,16 @@ void produce_filled(patterns::PartFillSource& source, post::LayerProducer& produ
   // enough that memory stays that of a handful of layers, whatever the part's height.
   const std::size_t in_flight = 2 * static_cast<std::size_t>(tbb::this_task_arena::max_concurrency());
   std::size_t next = 0;
+  // The first error, in layer order: no more layers go in, and the ones in flight pass through
+  // unwritten, so the pipeline ends normally (a filter that throws cancels it, and oneTBB then
+  // leaves the items between filters undestroyed) and the error is thrown after it.
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
   tbb::parallel_pipeline(
       in_flight,
       tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
                                           [&](tbb::flow_control& fc) -> std::size_t {
-                                            if (next == n) {
+                                            if (next == n || failed.load()) {
                                               fc.stop();
                                               return 0;
                                             }
@@ -79,6 +85,7 @@ void produce_filled(patterns::PartFillSource& source, post::LayerProducer& produ
                                                 [&](std::size_t k) {
                                                   Filled f;
                                                   f.k = k;
+                                                  if (failed.load()) return f;
                                                   try {
                                                     f.fill = source.fill(k);
                                                     if (complete) complete(k, f.fill);
@@ -88,11 +95,18 @@ void produce_filled(patterns::PartFillSource& source, post::LayerProducer& produ
                                                   return f;
                                                 }) &
           tbb::make_filter<Filled, void>(tbb::filter_mode::serial_in_order, [&](Filled f) {
-            if (f.error) std::rethrow_exception(f.error);
-            const slicer::Layer layer = source.layer_from(f.k, std::move(f.fill));
-            if (on_layer) on_layer(f.k, layer);
-            producer.add(layer);
+            if (error) return;
+            try {
+              if (f.error) std::rethrow_exception(f.error);
+              const slicer::Layer layer = source.layer_from(f.k, std::move(f.fill));
+              if (on_layer) on_layer(f.k, layer);
+              producer.add(layer);
+            } catch (...) {
+              error = std::current_exception();
+              failed.store(true);
+            }
           }));
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace strand::jobs
