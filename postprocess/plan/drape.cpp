@@ -4,9 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
+#include "postprocess/plan/idle_heads.h"
 #include "postprocess/plan/placement.h"
 #include "slicer/input_error.h"
+#include "slicer/mesh.h"
+#include "slicer/mesh_collision.h"
 #include "slicer/params.h"
 #include "slicer/units.h"
 
@@ -28,7 +32,9 @@ std::string xyz(const Vec3& p) {
 class Draper {
  public:
   Draper(const slicer::Surface& s, const machines::MachineProfile& m)
-      : s_(s), m_(m), center_(m.volume.part_center_mm), top_z_(top_of(s)) {}
+      : s_(s), m_(m), center_(m.volume.part_center_mm), top_z_(top_of(s)) {
+    for (int k = 0; k < machines::tool_count(m); ++k) lowest_tip_ = std::min(lowest_tip_, machines::tool_offset(m, k).z());
+  }
 
   slicer::MotionProgram run(const slicer::MotionProgram& flat) {
     slicer::MotionProgram out;
@@ -65,17 +71,19 @@ class Draper {
     return top;
   }
 
-  // Surface point under flat machine point q (x, y) raised by q.z, slope-checked.
-  Vec3 mapped(const Vec3& q) const {
+  // The carriage at flat machine point c with head `tool` depositing: that head's tip
+  // (c plus its offset) goes to the surface point under it raised by its flat z, slope-checked,
+  // and the carriage follows it.
+  Vec3 mapped(const Vec3& c, int tool) const {
+    const Vec3 o = machines::tool_offset(m_, tool);
+    const Vec3 q = c + o;
     const Vec2 uv = q.head<2>() - center_;
     if (!s_.in_domain(uv)) {
       const auto d = s_.domain();
-      throw InputError("onto: the pattern leaves the substrate at (u, v) = (" +
-                       slicer::short_number(uv.x()) + ", " + slicer::short_number(uv.y()) +
-                       ") mm; the patch spans u in [" + slicer::short_number(d.min_mm.x()) + ", " +
-                       slicer::short_number(d.max_mm.x()) + "], v in [" +
-                       slicer::short_number(d.min_mm.y()) + ", " +
-                       slicer::short_number(d.max_mm.y()) + "] (make the pattern smaller)");
+      const auto mm = [](double v) { return slicer::short_number(std::round(v * 1000) / 1000); };
+      throw InputError("onto: the pattern leaves the substrate at (u, v) = (" + mm(uv.x()) + ", " + mm(uv.y()) +
+                       ") mm; the patch spans u in [" + mm(d.min_mm.x()) + ", " + mm(d.max_mm.x()) + "], v in [" +
+                       mm(d.min_mm.y()) + ", " + mm(d.max_mm.y()) + "] (make the pattern smaller)");
     }
     const slicer::SurfaceFrame f = s_.frame_at(uv, 0.0);
     const double slope = slicer::rad_to_deg(std::acos(std::clamp(f.normal.z(), -1.0, 1.0)));
@@ -86,7 +94,7 @@ class Draper {
                        " keeps its nozzle vertical and follows at most max_surface_slope_deg = " +
                        slicer::short_number(m_.max_surface_slope_deg) + " deg");
     }
-    return Vec3(f.point_mm.x() + center_.x(), f.point_mm.y() + center_.y(), f.point_mm.z() + q.z());
+    return Vec3(f.point_mm.x() + center_.x(), f.point_mm.y() + center_.y(), f.point_mm.z() + q.z()) - o;
   }
 
   void deposit(const Vec3& from, const Move& mv, slicer::MotionProgram& out) {
@@ -95,7 +103,7 @@ class Draper {
     const double area = len > 0 ? mv.volume_mm3 / len : 0.0;  // bead section of the flat move
     for (int k = 1; k <= n; ++k) {
       Move piece = mv;
-      piece.end_mm = mapped(from + (mv.end_mm - from) * (static_cast<double>(k) / n));
+      piece.end_mm = mapped(from + (mv.end_mm - from) * (static_cast<double>(k) / n), mv.tool);
       piece.volume_mm3 = area * (piece.end_mm - last_).norm();
       out.moves.push_back(piece);
       last_ = piece.end_mm;
@@ -104,9 +112,10 @@ class Draper {
 
   // A run of flat travels becomes: up to the clearance, across, down onto the target.
   void travel(const Move& last_flat, slicer::MotionProgram& out) {
-    const Vec3 target = mapped(last_flat.end_mm);
+    const Vec3 target = mapped(last_flat.end_mm, last_flat.tool);
+    // Every head's tip above the substrate's top, the lowest one included.
     const double clear =
-        top_z_ + std::max(layer_z(last_flat, out), 0.0) + std::max(m_.travel_lift_mm, 1.0);
+        top_z_ + std::max(layer_z(last_flat, out), 0.0) + std::max(m_.travel_lift_mm, 1.0) - lowest_tip_;
     auto push = [&](const Vec3& p, double feed) {
       Move t = last_flat;
       t.end_mm = p;
@@ -132,6 +141,7 @@ class Draper {
   const machines::MachineProfile& m_;
   Vec2 center_;
   double top_z_;
+  double lowest_tip_ = 0.0;  // the lowest head's z offset (0 or below)
   Vec3 last_ = Vec3::Zero();
   Vec3 start_ = Vec3::Zero();
 };
@@ -143,9 +153,27 @@ slicer::MotionProgram plan_draped(const slicer::Toolpath& t, const slicer::Surfa
                                   const PlanOptions& options) {
   machines::MachineProfile chords = machine;
   chords.arcs = false;  // arcs become chords before mapping: a draped arc is not planar
-  const slicer::MotionProgram flat = plan(t, chords, options);
+  PlanOptions flat_options = options;
+  flat_options.check_idle_heads = false;  // the draped moves are checked, against the substrate too
+  const slicer::MotionProgram flat = plan(t, chords, flat_options);
   slicer::MotionProgram draped = Draper(s, machine).run(flat);
   check_fits(draped, machine);
+  IdleHeadCheck idle(machine);
+  if (!idle.active()) return draped;
+  // The idle tips against the beads and the substrate: its top under a bed point is where a
+  // vertical line there first meets its triangles (CGAL's AABB tree, slicer/mesh_collision.h).
+  const slicer::TriangleMesh t_mesh = s.preview_mesh(0.1);
+  if (t_mesh.triangles.empty()) return draped;
+  const slicer::Mesh substrate{t_mesh.vertices_mm, t_mesh.triangles, {}};
+  const slicer::Box3 box = slicer::bounds(substrate);
+  const slicer::MeshProximity proximity(substrate);
+  const Vec2 centre = machine.volume.part_center_mm;
+  idle.set_ground([&](const Vec2& xy) {
+    const Vec2 w = xy - centre;
+    const auto hit = proximity.first_hit(Vec3(w.x(), w.y(), box.max_mm.z() + 1.0), Vec3(w.x(), w.y(), box.min_mm.z() - 1.0));
+    return hit ? hit->point_mm.z() : -std::numeric_limits<double>::infinity();
+  });
+  throw_if_idle_head_drags(idle, draped, machine, options.arc_tolerance_mm);
   return draped;
 }
 

@@ -54,6 +54,14 @@ std::string head_name(const machines::MachineProfile& m, int tool) {
   return m.tools[static_cast<std::size_t>(tool)].name + " (" + t + ")";
 }
 
+// "passes 0.050 mm above the beads", "reaches 2.000 mm into the substrate".
+std::string clearance_text(const IdleHeadHit& hit) {
+  const double above = hit.tip_mm.z() - hit.bead_top_mm;
+  const std::string what = hit.substrate ? "the substrate" : "the beads";
+  if (above < 0) return "reaches " + machines::fmt_xyz(-above) + " mm into " + what;
+  return "passes " + machines::fmt_xyz(above) + " mm above " + what;
+}
+
 }  // namespace
 
 IdleHeadCheck::IdleHeadCheck(const machines::MachineProfile& m, std::size_t keep_beads) : keep_beads_(keep_beads) {
@@ -155,9 +163,17 @@ void IdleHeadCheck::add(const Vec3& from, const Vec3& to, const slicer::Move& mv
     const Vec2 p = from.head<2>() + d.head<2>(), q = to.head<2>() + d.head<2>();
     const double radius = h.tip_radius > 0 ? h.tip_radius : mv.width_mm / 2;
     Vec2 where = p;
-    const double top = highest_near(p, q, radius, tip_z - clearance, where);
+    double top = highest_near(p, q, radius, tip_z - clearance, where);
+    bool ground = false;
+    if (ground_) {  // the substrate under the tip's path: its ends and middle (moves are short)
+      for (const Vec2& g : {p, Vec2((p + q) / 2), q}) {
+        const double z = ground_(g);
+        if (z >= tip_z - clearance && z > top) top = z, where = g, ground = true;
+      }
+    }
     if (top < tip_z - clearance) continue;
-    if (hits_.size() < kMaxHits) hits_.push_back({mv.layer, static_cast<int>(k), a, Vec3(where.x(), where.y(), tip_z), top, move, line});
+    if (hits_.size() < kMaxHits)
+      hits_.push_back({mv.layer, static_cast<int>(k), a, Vec3(where.x(), where.y(), tip_z), top, ground, move, line});
     ++hit_count_;
   }
   insert(from.head<2>(), to.head<2>(), mv.width_mm, std::max(from.z(), to.z()));
@@ -190,12 +206,13 @@ void throw_if_idle_head_drags(IdleHeadCheck& check, const slicer::MotionProgram&
     const Vec3 d = machines::tool_offset(m, hit.tool) - o;
     throw InputError("tools: " + idle + " would drag through the print: idle while " + head_name(m, hit.active_tool) +
                      " deposits layer " + std::to_string(hit.layer) + ", its tip (" + machines::fmt_xyz(d.x()) + ", " +
-                     machines::fmt_xyz(d.y()) + ") mm from that nozzle passes " +
-                     machines::fmt_xyz(hit.tip_mm.z() - hit.bead_top_mm) + " mm above the beads at (" +
+                     machines::fmt_xyz(d.y()) + ") mm from that nozzle " + clearance_text(hit) + " at (" +
                      machines::fmt_xyz(hit.tip_mm.x()) + ", " + machines::fmt_xyz(hit.tip_mm.y()) +
                      ") mm; give tools[" + std::to_string(hit.tool) + "].idle_lift_mm in machine " + m.name +
-                     " (how high an idle head is held, 0 to 100 mm), or print a part narrower than the heads' offset, "
-                     "placed so the idle head stays outside it");
+                     " (how high an idle head is held, 0 to 100 mm), " +
+                     (hit.substrate ? std::string("or a substrate that stays lower under the idle head")
+                                    : std::string("or print a part narrower than the heads' offset, placed so the idle "
+                                                  "head stays outside it")));
   }
 }
 

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -24,7 +25,8 @@ struct IdleHeadHit {
   int tool = 0;         // the idle head
   int active_tool = 0;  // the head depositing
   slicer::Vec3 tip_mm = slicer::Vec3::Zero();  // the idle tip where it meets the beads (bed frame)
-  double bead_top_mm = 0.0;                    // the top of the bead it meets
+  double bead_top_mm = 0.0;                    // the top of the bead (or substrate) it meets
+  bool substrate = false;                      // it meets the substrate under the print (--onto)
   std::size_t move = 0;                        // index of the deposit move of the active head
   int line = 0;                                // its G-code line, when known
 };
@@ -53,6 +55,10 @@ class IdleHeadCheck {
   // arcs must already be flattened into chords (add one call per chord).
   void add(const slicer::Vec3& from_tip, const slicer::Vec3& to_tip, const slicer::Move& mv,
            double layer_height_mm, std::size_t move, int line);
+
+  // A substrate under the print (--onto): its top z at a bed point (x, y), or -infinity off
+  // it. The idle tips are then held clear of it as of the beads.
+  void set_ground(std::function<double(const slicer::Vec2&)> top_z) { ground_ = std::move(top_z); }
 
   const std::vector<IdleHeadHit>& hits() const { return hits_; }
   std::size_t hit_count() const { return hit_count_; }
@@ -93,6 +99,7 @@ class IdleHeadCheck {
   std::unordered_map<std::int64_t, Cell> cells_;
   std::vector<IdleHeadHit> hits_;
   std::size_t hit_count_ = 0;
+  std::function<double(const slicer::Vec2&)> ground_;
 };
 
 // The planner's use: a planned program's moves in the carriage frame (each head's tip at the

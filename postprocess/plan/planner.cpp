@@ -289,8 +289,10 @@ slicer::MotionProgram plan(const slicer::Toolpath& t, const machines::MachinePro
   slicer::MotionProgram p;
   Planner(machine, options, p).run(t);
   finish_for_machine(p, machine);
-  IdleHeadCheck idle(machine);
-  throw_if_idle_head_drags(idle, p, machine, options.arc_tolerance_mm);
+  if (options.check_idle_heads) {
+    IdleHeadCheck idle(machine);
+    throw_if_idle_head_drags(idle, p, machine, options.arc_tolerance_mm);
+  }
   return p;
 }
 

@@ -39,6 +39,9 @@ struct PlanOptions {
   std::optional<double> flow;
   // Printheads by feature or layer (--tools); empty: each stroke's own tool.
   ToolAssignment tools;
+  // Idle heads against the beads (idle_heads.h), when the plan is final; false where the
+  // caller moves the plan on and checks what it makes of it (plan_draped).
+  bool check_idle_heads = true;
 };
 
 // Reads "speed" and "<feature>-speed-factor" from the toolpath's parameters and

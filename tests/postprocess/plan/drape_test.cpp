@@ -68,5 +68,55 @@ TEST(Drape, PatternBiggerThanThePatchIsRefused) {
   EXPECT_NE(e.find("leaves the substrate"), std::string::npos) << e;
 }
 
+// The shipped two-head machine (head 2 35 mm right of head 1) with each idle head held `lift`
+// mm up.
+machines::MachineProfile two_heads(double lift) {
+  auto m = machines::load_profile("two-head-pneumatic");
+  for (auto& t : m.tools) t.idle_lift_mm = lift;
+  return m;
+}
+
+TEST(Drape, EachHeadsTipFollowsTheSubstrate) {
+  // Layer 0 by head 1, layer 1 by head 2: the carriage moves by head 2's offset, and it is
+  // head 2's tip that lies on the substrate raised by the layer's z (before, the carriage's
+  // point was draped, 35 mm off).
+  const slicer::MeshSurface s(testing::plate_mesh(60, 40, 3, 60, 40), "plate");
+  const auto m = two_heads(5);
+  const slicer::Toolpath t = scaffold("20x20");
+  PlanOptions o = plan_options_from(t, 0.01);
+  o.tools.by_layer = {0, 1};
+  const slicer::MotionProgram p = plan_draped(t, s, m, o);
+  const slicer::Vec2 c = m.volume.part_center_mm;
+  int by_head[2] = {0, 0};
+  for (const auto& mv : p.moves) {
+    if (mv.kind != slicer::MoveKind::Deposit) continue;
+    ASSERT_TRUE(mv.tool == 0 || mv.tool == 1);
+    ++by_head[mv.tool];
+    const slicer::Vec3 tip = mv.end_mm + machines::tool_offset(m, mv.tool);
+    const double x = tip.x() - c.x(), y = tip.y() - c.y();
+    EXPECT_LE(std::abs(x), 15.0) << "the tip stays over the pattern (and its lead-in), not 35 mm off";
+    const double surface = 3.0 * (1.0 - 2.0 * (x * x + y * y) / (3600.0 + 1600.0));
+    EXPECT_NEAR(tip.z() - surface, p.layers[mv.layer].z_mm, 0.01);
+  }
+  EXPECT_GT(by_head[0], 50);
+  EXPECT_GT(by_head[1], 50);
+}
+
+TEST(Drape, AnIdleHeadTheSubstrateRisesUnderIsRefusedUnlessLifted) {
+  // A bowl 100 x 40, 6 mm deep: 35 mm right of the print, under head 2, its side is about
+  // 1.3 mm higher than under head 1, more than the first layer is thick.
+  slicer::Mesh bowl_mesh = testing::plate_mesh(100, 40, -6, 100, 40);
+  for (auto& v : bowl_mesh.vertices_mm) v.z() += 7;  // on the bed
+  const slicer::MeshSurface bowl(bowl_mesh, "bowl");
+  const slicer::Toolpath t = scaffold("10x10");
+  const std::string e = error_of(t, bowl, two_heads(0));
+  EXPECT_NE(e.find("tools: head 2 (T1) would drag through the print: idle while head 1 (T0) deposits layer 0"),
+            std::string::npos) << e;
+  EXPECT_NE(e.find("mm into the substrate at ("), std::string::npos) << e;
+  EXPECT_EQ(error_of(t, bowl, two_heads(3)), "");
+  // A dome falls away under head 2: nothing to meet, even level.
+  EXPECT_EQ(error_of(t, slicer::MeshSurface(testing::plate_mesh(100, 40, 6, 100, 40), "dome"), two_heads(0)), "");
+}
+
 }  // namespace
 }  // namespace strand::post
