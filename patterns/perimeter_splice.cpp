@@ -3,9 +3,11 @@
 #include "patterns/perimeter_splice.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 #include <limits>
+#include <optional>
 
 namespace strand::patterns {
 
@@ -16,6 +18,8 @@ namespace {
 
 // Link tolerance: loops lie one gap outside the fill boundary; allow rounding of offsets.
 constexpr double kLinkSlack = 1.05;
+// The longest stretch of a loop left out where it joins two strands (gaps).
+constexpr double kMaxOpening = 2.0;
 
 struct Nearest {
   std::size_t edge = 0;  // from vertex edge to edge + 1 of the loop's points
@@ -95,6 +99,27 @@ double loop_position(const std::vector<Vec2>& loop, const std::vector<double>& c
   return cum[n.edge] + (n.at - loop[n.edge]).norm();
 }
 
+// The loop's vertices from n1 round the long way to n2 (neither point included): against the
+// loop's order when n2 lies `d` > 0 ahead of n1 along it, with it otherwise.
+std::vector<Vec2> long_way(const std::vector<Vec2>& loop, const Nearest& n1, const Nearest& n2, double d) {
+  const std::size_t m = loop.size() - 1;
+  std::vector<Vec2> round;
+  if (d > 0) {
+    for (std::size_t k = 0; k < m; ++k) {
+      const std::size_t v = (n1.edge + m - k) % m;
+      round.push_back(loop[v]);
+      if (v == (n2.edge + 1) % m) break;
+    }
+  } else {
+    for (std::size_t k = 1; k <= m; ++k) {
+      const std::size_t v = (n1.edge + k) % m;
+      round.push_back(loop[v]);
+      if (v == n2.edge) break;
+    }
+  }
+  return round;
+}
+
 // A loop no strand end took, spliced into the middle of a strand that runs beside it: the
 // strand leaves at q1 for the loop's p1, runs round the loop the long way to p2 and comes back
 // at q2, a gap further along; the strand between q1 and q2 and the loop between p1 and p2
@@ -140,21 +165,7 @@ bool splice_into_middle(Stroke& s, const std::vector<Vec2>& loop, double gap_mm,
     if (std::abs(d) < 0.5 * gap_mm || std::abs(d) > 2.0 * gap_mm) continue;
     if (slicer::segment_contact(q1, n1.at, q2, n2.at, 1e-9) != slicer::Contact::None) continue;
     if (!link_is_clear(q1, n1.at, all) || !link_is_clear(q2, n2.at, all)) continue;
-    // Round the loop the long way: against the loop's order when p2 lies ahead of p1.
-    std::vector<Vec2> round;
-    if (d > 0) {
-      for (std::size_t k = 0; k < m; ++k) {
-        const std::size_t v = (n1.edge + m - k) % m;
-        round.push_back(loop[v]);
-        if (v == (n2.edge + 1) % m) break;
-      }
-    } else {
-      for (std::size_t k = 1; k <= m; ++k) {
-        const std::size_t v = (n1.edge + k) % m;
-        round.push_back(loop[v]);
-        if (v == n2.edge) break;
-      }
-    }
+    const std::vector<Vec2> round = long_way(loop, n1, n2, d);
     Stroke out = s;
     out.segments.assign(s.segments.begin(), s.segments.begin() + static_cast<std::ptrdiff_t>(k1));
     const auto add = [&](const Vec2& p, slicer::Feature f) {
@@ -220,6 +231,117 @@ std::vector<Stroke> pair_loops(std::vector<Stroke> loops, double gap_mm,
   return out;
 }
 
+// Strands joined in pairs through a loop beside an end of each: from the first's end across
+// to the loop, round it the long way, across to the second's end. Per loop, of the strand ends
+// beside it (within kLinkSlack gap, link clear) the two neighbours along it of different
+// chains that lie closest, 0.5 to kMaxOpening gaps apart: that stretch of the loop, between
+// the two links, is all it leaves out. A loop is entered and left once, so it joins one pair;
+// chains never close on themselves. Returns the chains; `used` marks the loops taken, `all`
+// and `links` gain the links.
+std::vector<Stroke> join_through_loops(const std::vector<Stroke>& loops, const std::vector<Stroke>& strands,
+                                       double gap_mm, std::vector<bool>& used, std::vector<const Stroke*>& all,
+                                       std::deque<Stroke>& links) {
+  struct End {
+    std::size_t strand;
+    bool at_start;
+    Nearest n;
+    double pos;
+  };
+  struct Join {
+    End a, b;
+    std::size_t loop;
+    double d;  // b's position along the loop less a's, the short way
+  };
+  std::vector<std::size_t> root(strands.size());
+  for (std::size_t i = 0; i < root.size(); ++i) root[i] = i;
+  const auto find = [&](std::size_t i) {
+    while (root[i] != i) i = root[i] = root[root[i]];
+    return i;
+  };
+  std::vector<std::array<int, 2>> join_at(strands.size(), {-1, -1});  // per end: the join taken
+  std::vector<Join> joins;
+  const double reach = kLinkSlack * gap_mm;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    if (used[l]) continue;
+    const std::vector<Vec2> loop = points_of(loops[l]);
+    if (loop.size() < 4) continue;
+    std::vector<double> cum{0.0};
+    for (std::size_t i = 0; i + 1 < loop.size(); ++i) cum.push_back(cum.back() + (loop[i + 1] - loop[i]).norm());
+    const double length = cum.back();
+    std::vector<End> ends;
+    for (std::size_t s = 0; s < strands.size(); ++s) {
+      for (const bool at_start : {true, false}) {
+        if (join_at[s][at_start ? 0 : 1] >= 0) continue;
+        const Vec2 e = at_start ? strands[s].start_mm : strands[s].end_mm();
+        const Nearest n = nearest_on(loop, e);
+        if (n.distance > reach || !link_is_clear(e, n.at, all)) continue;
+        ends.push_back({s, at_start, n, loop_position(loop, cum, n)});
+      }
+    }
+    if (ends.size() < 2) continue;
+    std::stable_sort(ends.begin(), ends.end(), [](const End& x, const End& y) { return x.pos < y.pos; });
+    std::optional<Join> best;
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+      const End& a = ends[i];
+      const End& b = ends[(i + 1) % ends.size()];
+      if (find(a.strand) == find(b.strand)) continue;
+      double d = b.pos - a.pos;
+      if (d < 0) d += length;
+      if (d < 0.5 * gap_mm || d > kMaxOpening * gap_mm || d > length / 2) continue;
+      const Vec2 ea = a.at_start ? strands[a.strand].start_mm : strands[a.strand].end_mm();
+      const Vec2 eb = b.at_start ? strands[b.strand].start_mm : strands[b.strand].end_mm();
+      if (slicer::segment_contact(ea, a.n.at, eb, b.n.at, 1e-9) != slicer::Contact::None) continue;
+      if (!best || d < best->d) best = Join{a, b, l, d};
+    }
+    if (!best) continue;
+    used[l] = true;
+    root[find(best->a.strand)] = find(best->b.strand);
+    join_at[best->a.strand][best->a.at_start ? 0 : 1] = static_cast<int>(joins.size());
+    join_at[best->b.strand][best->b.at_start ? 0 : 1] = static_cast<int>(joins.size());
+    for (const End* e : {&best->a, &best->b}) {
+      const Vec2 p = e->at_start ? strands[e->strand].start_mm : strands[e->strand].end_mm();
+      links.push_back({p, {slicer::line_to(e->n.at, slicer::Feature::Wall)}});
+      all.push_back(&links.back());
+    }
+    joins.push_back(*best);
+  }
+  if (joins.empty()) return strands;
+  // Each chain from a strand with a free end: strand, link, round the loop, link, next strand.
+  std::vector<Stroke> out;
+  std::vector<bool> done(strands.size(), false);
+  for (std::size_t first = 0; first < strands.size(); ++first) {
+    if (done[first] || (join_at[first][0] >= 0 && join_at[first][1] >= 0)) continue;
+    Stroke chain;
+    std::size_t s = first;
+    bool forward = join_at[first][0] < 0;  // enter at the free end
+    for (;;) {
+      done[s] = true;
+      const Stroke piece = forward ? strands[s] : slicer::reversed(strands[s]);
+      if (s == first) {
+        chain = piece;
+      } else {
+        chain.segments.push_back(slicer::line_to(piece.start_mm, slicer::Feature::Wall));
+        chain.segments.insert(chain.segments.end(), piece.segments.begin(), piece.segments.end());
+      }
+      const int j = join_at[s][forward ? 1 : 0];
+      if (j < 0) break;
+      const Join& jn = joins[static_cast<std::size_t>(j)];
+      const bool from_a = jn.a.strand == s && jn.a.at_start != forward;
+      const End& exit = from_a ? jn.a : jn.b;
+      const End& entry = from_a ? jn.b : jn.a;
+      const std::vector<Vec2> loop = points_of(loops[jn.loop]);
+      chain.segments.push_back(slicer::line_to(exit.n.at, slicer::Feature::Wall));
+      for (const Vec2& p : long_way(loop, exit.n, entry.n, from_a ? jn.d : -jn.d))
+        chain.segments.push_back(slicer::line_to(p, slicer::Feature::Wall));
+      chain.segments.push_back(slicer::line_to(entry.n.at, slicer::Feature::Wall));
+      s = entry.strand;
+      forward = entry.at_start;
+    }
+    out.push_back(std::move(chain));
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<Stroke> splice_loops(std::vector<Stroke> loops, std::vector<Stroke> strands,
@@ -229,10 +351,10 @@ std::vector<Stroke> splice_loops(std::vector<Stroke> loops, std::vector<Stroke> 
   for (const Stroke& s : loops) all.push_back(&s);
   for (const Stroke& s : strands) all.push_back(&s);
   for (const Stroke& s : others) all.push_back(&s);
-  std::vector<Stroke> links;  // links made so far, as strokes, so later links avoid them
-  links.reserve(2 * strands.size());
+  std::deque<Stroke> links;  // links made so far, as strokes, so later links avoid them
+  const std::vector<Stroke> chains = join_through_loops(loops, strands, gap_mm, used, all, links);
   std::vector<Stroke> out;
-  for (Stroke& s : strands) {
+  for (const Stroke& s : chains) {
     Stroke joined = s;
     for (const bool at_start : {true, false}) {
       const Vec2 end = at_start ? s.start_mm : s.end_mm();

@@ -50,5 +50,28 @@ TEST(PerimeterSplice, FarStrandOrBlockedLinkLeavesTheLoopAlone) {
       << "both links blocked";
 }
 
+// A vertical strand at x from just inside the loop's bottom to just inside its top.
+Stroke strand_up(double half, double gap, double x) {
+  Stroke s;
+  s.start_mm = Vec2(x, -half + gap);
+  s.segments.push_back(slicer::line_to(Vec2(x, half - gap), slicer::Feature::Infill));
+  return s;
+}
+
+TEST(PerimeterSplice, TwoStrandsEndingSideBySideBesideALoopBecomeOneThroughIt) {
+  // Bottom ends two gaps (1 mm) apart along the loop: the first strand runs down, out to the
+  // loop, round it the long way (39 of its 40 mm), back in and up the second.
+  const auto out = splice_loops({square_loop(5)}, {strand_up(5, 0.5, -1), strand_up(5, 0.5, 0)}, 0.5, {});
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_TRUE(out[0].start_mm.isApprox(Vec2(-1, 4.5)));
+  EXPECT_TRUE(out[0].end_mm().isApprox(Vec2(0, 4.5)));
+  EXPECT_NEAR(slicer::stroke_length(out[0]), 9 + 0.5 + 39 + 0.5 + 9, 1e-9);
+  // 3 mm apart, more than two gaps: the loop would lose too much; it joins the first strand
+  // whole and the second stays a strand of its own.
+  const auto far = splice_loops({square_loop(5)}, {strand_up(5, 0.5, -1), strand_up(5, 0.5, 2)}, 0.5, {});
+  ASSERT_EQ(far.size(), 2u);
+  EXPECT_NEAR(slicer::stroke_length(far[0]), 40 + 0.5 + 9, 1e-9);
+}
+
 }  // namespace
 }  // namespace strand::patterns
