@@ -108,15 +108,17 @@ std::vector<slicer::Stroke> assign_tools(const std::vector<slicer::Stroke>& stro
       const auto it = a.by_feature.find(seg.feature);
       return it == a.by_feature.end() ? s.tool : it->second;
     };
-    slicer::Stroke piece = s;
-    piece.segments.clear();
+    // The stroke without its segments, copied for each piece (copying the stroke itself for
+    // each cut made a long strand cut at every node quadratic: minutes for a big lattice).
+    slicer::Stroke blank = s;
+    blank.segments = {};
+    slicer::Stroke piece = blank;
     for (const auto& seg : s.segments) {
       const int t = tool_of(seg);
       if (!piece.segments.empty() && t != piece.tool) {
         const slicer::Vec2 at = piece.end_mm();
         cut.push_back(std::move(piece));
-        piece = s;
-        piece.segments.clear();
+        piece = blank;
         piece.start_mm = at;
       }
       piece.tool = t;

@@ -145,6 +145,26 @@ def sweep(t, strand, work, shared):
         t.add(label, "cpu per specimen", round(cpu / n * 1e3, 2), "ms", None if previews else "<= 1", None if previews else cpu / n <= 1e-3)
 
 
+def two_inks(t, strand, work):
+    """Issue 33: printheads by feature cost little over one head. A tetrachiral lattice of
+    40 x 40 cells (one strand per layer, cut at every node ring) on the two-head profile with a
+    1 m bed: assign_tools copied the whole strand at each cut (171 s against 0.5 s)."""
+    with open(os.path.join(REPO, "machines", "profiles", "two-head-pneumatic.json")) as f:
+        p = json.load(f)
+    p["name"] = "bench-two-heads"
+    p["kinematics"].update({"max_mm": [1000, 1000, 100], "part_center_mm": [500, 500]})
+    machine = os.path.join(work, "bench-two-heads.json")
+    with open(machine, "w") as f:
+        json.dump(p, f)
+    job = [strand, "tetrachiral", "--nozzle", "0.5", "--cell", "10", "--cols", "40", "--rows", "40", "--layers", "4",
+           "--machine", machine, "-o", os.path.join(work, "two-inks.gcode")]
+    one, _ = run_min(job, work)
+    two, _ = run_min(job + ["--tools", "node=1,ligament=0"], work)
+    label = "tetrachiral 40x40 cells, 4 layers"
+    t.add(label, "cpu one head", round(one, 2), "s")
+    t.add(label, "cpu heads by feature", round(two, 2), "s", "<= 3x one head", two <= 3 * one)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("strand")
@@ -183,6 +203,7 @@ def main():
         for n in ([10000, 100000] if a.quick else [10000, 100000, 300000]):
             plot(t, strand, work, a.shared, n, wide, {10000: 20900, 100000: 65316})
         sweep(t, strand, work, a.shared)
+        two_inks(t, strand, work)
         # Issue 30.6: strand slice beside PrusaSlicer on public meshes (its own table, then rows).
         import slice_vs_prusaslicer
         slice_vs_prusaslicer.bench_rows(t, strand, work)
