@@ -5,7 +5,9 @@
 #include <filesystem>
 
 #include "slicer/input_error.h"
+#include "slicer/mesh_decimate.h"
 #include "slicer/mesh_io.h"
+#include "slicer/params.h"
 
 namespace strand::jobs {
 
@@ -74,15 +76,18 @@ PlacedMesh placed_mesh_from(const json& placement, const std::string& folder, st
     meshes.push_back(slicer::read_mesh_file(path));
     out.triangles += meshes.back().triangles.size();
   }
-  if (out.triangles > max_triangles) {
+  slicer::Mesh all = slicer::merge_meshes(meshes);
+  meshes.clear();
+  for (slicer::Vec3& v : all.vertices_mm) v = to_machine * v;
+  if (out.triangles > max_triangles) {  // drawn coarse: its index would outgrow the paths' blocks
+    slicer::Decimated d = slicer::decimate_for_drawing(all, max_triangles);
+    all = std::move(d.mesh);
     out.note = "the " + placement.value("role", std::string("part")) + " mesh (" + std::to_string(out.triangles) +
-               " triangles) is not drawn: more than " + std::to_string(max_triangles);
-    return out;
+               " triangles) is drawn simplified to " + std::to_string(all.triangles.size()) + " (" +
+               slicer::short_number(std::round(d.cell_mm * 1000) / 1000) + " mm cells)";
   }
-  const slicer::Mesh all = slicer::merge_meshes(meshes);
-  out.mesh.triangles = all.triangles;
-  out.mesh.vertices_mm.reserve(all.vertices_mm.size());
-  for (const slicer::Vec3& v : all.vertices_mm) out.mesh.vertices_mm.push_back(to_machine * v);
+  out.mesh.triangles = std::move(all.triangles);
+  out.mesh.vertices_mm = std::move(all.vertices_mm);
   return out;
 }
 

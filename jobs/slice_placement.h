@@ -15,8 +15,9 @@
 
 namespace strand::jobs {
 
-// Triangles a viewer draws of a recorded mesh; a larger one is left out with a note (its
-// index would outgrow the paths' blocks: 300k triangles are about 8 MB of JSON).
+// Triangles a viewer draws of a recorded mesh; a larger one is drawn simplified to this many
+// (slicer/mesh_decimate.h), with a note: its index would outgrow the paths' blocks (300k
+// triangles are about 8 MB of JSON).
 inline constexpr std::size_t kMaxViewerMeshTriangles = 300'000;
 
 // {"role": "part" or "substrate", "files": [...as the parameters name them],
@@ -38,7 +39,7 @@ struct PlacedMesh {
 // The mesh a report's "mesh_placement" records, read with the bounded mesh readers and placed:
 // each file by its name only inside `folder` (a server's job folder), or with an empty folder
 // at its recorded path (`strand preview --mesh-from` on the user's own report); over
-// `max_triangles`, left out with a note. Throws InputError for a malformed record or an
+// `max_triangles`, drawn simplified with a note. Throws InputError for a malformed record or an
 // unreadable file.
 PlacedMesh placed_mesh_from(const nlohmann::json& placement, const std::string& folder,
                             std::size_t max_triangles = kMaxViewerMeshTriangles);
