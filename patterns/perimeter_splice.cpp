@@ -33,6 +33,15 @@ std::vector<Vec2> points_of(const Stroke& s) {
   return p;
 }
 
+// Arc length from the first point to each point of a polyline.
+std::vector<double> cumulative(const std::vector<Vec2>& p) {
+  std::vector<double> cum{0.0};
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) cum.push_back(cum.back() + (p[i + 1] - p[i]).norm());
+  return cum;
+}
+
+Vec2 end_of(const Stroke& s, bool at_start) { return at_start ? s.start_mm : s.end_mm(); }
+
 Nearest nearest_on(const std::vector<Vec2>& loop, const Vec2& q) {
   Nearest best;
   for (std::size_t i = 0; i + 1 < loop.size(); ++i) {
@@ -130,14 +139,11 @@ bool splice_into_middle(Stroke& s, const std::vector<Vec2>& loop, double gap_mm,
                         std::vector<const Stroke*>& all, std::deque<Stroke>& links) {
   const std::size_t m = loop.size() - 1;
   if (m < 3 || s.segments.empty()) return false;
-  std::vector<double> loop_cum{0.0};
-  for (std::size_t i = 0; i + 1 < loop.size(); ++i)
-    loop_cum.push_back(loop_cum.back() + (loop[i + 1] - loop[i]).norm());
+  const std::vector<double> loop_cum = cumulative(loop);
   const double loop_length = loop_cum.back();
   // The strand's vertices and arc lengths (arcs count as their chords: never split).
   const std::vector<Vec2> ps = points_of(s);
-  std::vector<double> cum{0.0};
-  for (std::size_t i = 0; i + 1 < ps.size(); ++i) cum.push_back(cum.back() + (ps[i + 1] - ps[i]).norm());
+  const std::vector<double> cum = cumulative(ps);
   const auto at = [&](double t, std::size_t& seg) {
     seg = static_cast<std::size_t>(std::upper_bound(cum.begin(), cum.end(), t) - cum.begin());
     seg = std::clamp<std::size_t>(seg, 1, ps.size() - 1) - 1;  // segment seg: ps[seg] -> ps[seg+1]
@@ -265,14 +271,13 @@ std::vector<Stroke> join_through_loops(const std::vector<Stroke>& loops, const s
     if (used[l]) continue;
     const std::vector<Vec2> loop = points_of(loops[l]);
     if (loop.size() < 4) continue;
-    std::vector<double> cum{0.0};
-    for (std::size_t i = 0; i + 1 < loop.size(); ++i) cum.push_back(cum.back() + (loop[i + 1] - loop[i]).norm());
+    const std::vector<double> cum = cumulative(loop);
     const double length = cum.back();
     std::vector<End> ends;
     for (std::size_t s = 0; s < strands.size(); ++s) {
       for (const bool at_start : {true, false}) {
         if (join_at[s][at_start ? 0 : 1] >= 0) continue;
-        const Vec2 e = at_start ? strands[s].start_mm : strands[s].end_mm();
+        const Vec2 e = end_of(strands[s], at_start);
         const Nearest n = nearest_on(loop, e);
         if (n.distance > reach || !link_is_clear(e, n.at, all)) continue;
         ends.push_back({s, at_start, n, loop_position(loop, cum, n)});
@@ -288,9 +293,8 @@ std::vector<Stroke> join_through_loops(const std::vector<Stroke>& loops, const s
       double d = b.pos - a.pos;
       if (d < 0) d += length;
       if (d < 0.5 * gap_mm || d > kMaxOpening * gap_mm || d > length / 2) continue;
-      const Vec2 ea = a.at_start ? strands[a.strand].start_mm : strands[a.strand].end_mm();
-      const Vec2 eb = b.at_start ? strands[b.strand].start_mm : strands[b.strand].end_mm();
-      if (slicer::segment_contact(ea, a.n.at, eb, b.n.at, 1e-9) != slicer::Contact::None) continue;
+      if (slicer::segment_contact(end_of(strands[a.strand], a.at_start), a.n.at,
+                                  end_of(strands[b.strand], b.at_start), b.n.at, 1e-9) != slicer::Contact::None) continue;
       if (!best || d < best->d) best = Join{a, b, l, d};
     }
     if (!best) continue;
@@ -299,8 +303,7 @@ std::vector<Stroke> join_through_loops(const std::vector<Stroke>& loops, const s
     join_at[best->a.strand][best->a.at_start ? 0 : 1] = static_cast<int>(joins.size());
     join_at[best->b.strand][best->b.at_start ? 0 : 1] = static_cast<int>(joins.size());
     for (const End* e : {&best->a, &best->b}) {
-      const Vec2 p = e->at_start ? strands[e->strand].start_mm : strands[e->strand].end_mm();
-      links.push_back({p, {slicer::line_to(e->n.at, slicer::Feature::Wall)}});
+      links.push_back({end_of(strands[e->strand], e->at_start), {slicer::line_to(e->n.at, slicer::Feature::Wall)}});
       all.push_back(&links.back());
     }
     joins.push_back(*best);
@@ -357,7 +360,7 @@ std::vector<Stroke> splice_loops(std::vector<Stroke> loops, std::vector<Stroke> 
   for (const Stroke& s : chains) {
     Stroke joined = s;
     for (const bool at_start : {true, false}) {
-      const Vec2 end = at_start ? s.start_mm : s.end_mm();
+      const Vec2 end = end_of(s, at_start);
       std::size_t pick = loops.size();
       Nearest best;
       for (std::size_t l = 0; l < loops.size(); ++l) {

@@ -8,7 +8,6 @@
 
 #include "machines/kinematics.h"
 #include "machines/plotter_kinematics.h"
-#include "postprocess/plan/arc_segmentation.h"
 #include "postprocess/plan/estimate.h"
 
 namespace strand::post {
@@ -124,16 +123,7 @@ void CheckStream::idle_heads(const slicer::Move& mv, std::size_t move, int line,
     const auto k = static_cast<std::size_t>(mv.layer);
     h = p.layers[k].height_mm > 0 ? p.layers[k].height_mm : p.layers[k].z_mm - (k > 0 ? p.layers[k - 1].z_mm : 0.0);
   }
-  if (!mv.is_arc) {
-    idle_->add(at_ + up, mv.end_mm + up, mv, h, move, line);
-    return;
-  }
-  Vec3 from = at_;
-  for (const Vec2& c : segment_arc(at_.head<2>(), mv.center_mm, mv.end_mm.head<2>(), mv.ccw, o_.arc_tolerance_mm)) {
-    const Vec3 to(c.x(), c.y(), mv.end_mm.z());
-    idle_->add(from + up, to + up, mv, h, move, line);
-    from = to;
-  }
+  idle_->add_move(at_, mv, up, h, move, line, o_.arc_tolerance_mm);
 }
 
 // As estimate() counts them: a deposit after a travel that moved, or in a new layer,

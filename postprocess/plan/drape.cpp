@@ -31,8 +31,9 @@ std::string xyz(const Vec3& p) {
 
 class Draper {
  public:
-  Draper(const slicer::Surface& s, const machines::MachineProfile& m)
-      : s_(s), m_(m), center_(m.volume.part_center_mm), top_z_(top_of(s)) {
+  // `shape`: the substrate's triangles (its top is the travels' floor).
+  Draper(const slicer::Surface& s, const slicer::TriangleMesh& shape, const machines::MachineProfile& m)
+      : s_(s), m_(m), center_(m.volume.part_center_mm), top_z_(top_of(shape)) {
     for (int k = 0; k < machines::tool_count(m); ++k) lowest_tip_ = std::min(lowest_tip_, machines::tool_offset(m, k).z());
   }
 
@@ -64,8 +65,7 @@ class Draper {
   }
 
  private:
-  static double top_of(const slicer::Surface& s) {
-    const slicer::TriangleMesh mesh = s.preview_mesh(0.1);
+  static double top_of(const slicer::TriangleMesh& mesh) {
     double top = mesh.vertices_mm.empty() ? 0.0 : mesh.vertices_mm.front().z();
     for (const Vec3& v : mesh.vertices_mm) top = std::max(top, v.z());
     return top;
@@ -156,15 +156,14 @@ slicer::MotionProgram plan_draped(const slicer::Toolpath& t, const slicer::Surfa
   PlanOptions flat_options = options;
   flat_options.check_idle_heads = false;  // the draped moves are checked, against the substrate too
   const slicer::MotionProgram flat = plan(t, chords, flat_options);
-  slicer::MotionProgram draped = Draper(s, machine).run(flat);
+  const slicer::TriangleMesh shape = s.preview_mesh(0.1);
+  slicer::MotionProgram draped = Draper(s, shape, machine).run(flat);
   check_fits(draped, machine);
   IdleHeadCheck idle(machine);
-  if (!idle.active()) return draped;
+  if (!idle.active() || shape.triangles.empty()) return draped;
   // The idle tips against the beads and the substrate: its top under a bed point is where a
   // vertical line there first meets its triangles (CGAL's AABB tree, slicer/mesh_collision.h).
-  const slicer::TriangleMesh t_mesh = s.preview_mesh(0.1);
-  if (t_mesh.triangles.empty()) return draped;
-  const slicer::Mesh substrate{t_mesh.vertices_mm, t_mesh.triangles, {}};
+  const slicer::Mesh substrate{shape.vertices_mm, shape.triangles, {}};
   const slicer::Box3 box = slicer::bounds(substrate);
   const slicer::MeshProximity proximity(substrate);
   const Vec2 centre = machine.volume.part_center_mm;

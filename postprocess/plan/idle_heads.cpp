@@ -179,6 +179,21 @@ void IdleHeadCheck::add(const Vec3& from, const Vec3& to, const slicer::Move& mv
   insert(from.head<2>(), to.head<2>(), mv.width_mm, std::max(from.z(), to.z()));
 }
 
+void IdleHeadCheck::add_move(const Vec3& from, const slicer::Move& mv, const Vec3& to_tip, double layer_height_mm,
+                             std::size_t move, int line, double arc_tolerance_mm) {
+  if (!active_ || mv.kind != MoveKind::Deposit) return;
+  if (!mv.is_arc) {
+    add(from + to_tip, mv.end_mm + to_tip, mv, layer_height_mm, move, line);
+    return;
+  }
+  Vec3 at = from;
+  for (const Vec2& c : segment_arc(from.head<2>(), mv.center_mm, mv.end_mm.head<2>(), mv.ccw, arc_tolerance_mm)) {
+    const Vec3 to(c.x(), c.y(), mv.end_mm.z());
+    add(at + to_tip, to + to_tip, mv, layer_height_mm, move, line);
+    at = to;
+  }
+}
+
 void throw_if_idle_head_drags(IdleHeadCheck& check, const slicer::MotionProgram& piece,
                               const machines::MachineProfile& m, double arc_tolerance_mm) {
   if (!check.active()) return;
@@ -189,16 +204,7 @@ void throw_if_idle_head_drags(IdleHeadCheck& check, const slicer::MotionProgram&
     const Vec3 o = machines::tool_offset(m, mv.tool);
     const double h = mv.layer >= 0 && mv.layer < static_cast<int>(piece.layers.size())
                          ? piece.layers[static_cast<std::size_t>(mv.layer)].height_mm : 0.0;
-    if (mv.kind == MoveKind::Deposit && mv.is_arc) {
-      Vec3 from = at;
-      for (const Vec2& c : segment_arc(at.head<2>(), mv.center_mm, mv.end_mm.head<2>(), mv.ccw, arc_tolerance_mm)) {
-        const Vec3 to(c.x(), c.y(), mv.end_mm.z());
-        check.add(from + o, to + o, mv, h, i, 0);
-        from = to;
-      }
-    } else {
-      check.add(at + o, mv.end_mm + o, mv, h, i, 0);
-    }
+    check.add_move(at, mv, o, h, i, 0, arc_tolerance_mm);
     at = mv.end_mm;
     if (check.hit_count() == 0) continue;
     const IdleHeadHit& hit = check.hits().front();

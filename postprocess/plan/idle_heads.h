@@ -55,6 +55,10 @@ class IdleHeadCheck {
   // arcs must already be flattened into chords (add one call per chord).
   void add(const slicer::Vec3& from_tip, const slicer::Vec3& to_tip, const slicer::Move& mv,
            double layer_height_mm, std::size_t move, int line);
+  // The same for a program's move from `from` (arcs flattened into chords within
+  // `arc_tolerance_mm`), each point shifted by `to_tip` (from the move's frame to its tip).
+  void add_move(const slicer::Vec3& from, const slicer::Move& mv, const slicer::Vec3& to_tip,
+                double layer_height_mm, std::size_t move, int line, double arc_tolerance_mm);
 
   // A substrate under the print (--onto): its top z at a bed point (x, y), or -infinity off
   // it. The idle tips are then held clear of it as of the beads.
