@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
+#include <numeric>
 
+#include "patterns/lobe_seams.h"
 #include "patterns/perimeter_splice.h"
 #include "patterns/region_join.h"
 #include "slicer/input_error.h"
@@ -74,18 +76,90 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
       (k + 1 == perimeters ? inner : out.strokes).push_back(ring_stroke(ring, d, h));
     }
   }
-  const RingSet rs =
-      ring_set(slicer::rings_of(slicer::offset_region(region, -(perimeters + 0.5) * d)));
-  std::vector<FillPiece> pieces;
-  for (FillPiece& piece : clip_to_rings(rs, pattern_lines(p, layer, half))) {
-    const double len = line_length(piece.line);
-    if (len < p.min_piece_mm) continue;  // a corner or a node grazed: a strand of its own otherwise
-    out.pattern_length_mm += len;
-    pieces.push_back(std::move(piece));
+  // The pattern clipped to `fill` and joined, the innermost loops spliced in.
+  struct Joined {
+    std::vector<slicer::Stroke> strands;  // with their loops, then the loops left over
+    std::vector<FillPiece> pieces;
+    int pattern_strands = 0;
+    double pattern_length_mm = 0.0;
+  };
+  // `slits`: seams cut out of `fill`, grown a little; half chords ending on one may be as
+  // short as half a nozzle (a narrow lobe).
+  const double min_half = 0.5 * d;
+  const auto join = [&](const Region& fill, const Region& slits) {
+    Joined j;
+    const RingSet rs = ring_set(slicer::rings_of(fill));
+    for (FillPiece& piece : clip_to_rings(rs, pattern_lines(p, layer, half))) {
+      const double len = line_length(piece.line);
+      const auto on_slit = [&] {
+        return len >= min_half && (slicer::contains(slits, piece.line.points.front()) ||
+                                   slicer::contains(slits, piece.line.points.back()));
+      };
+      // A corner or a node grazed: a strand of its own otherwise.
+      if (len < p.min_piece_mm && (slits.empty() || !on_slit())) continue;
+      j.pattern_length_mm += len;
+      j.pieces.push_back(std::move(piece));
+    }
+    std::vector<slicer::Stroke> strands = join_pieces(rs, j.pieces, {p.connector, d, h}, inner);
+    j.pattern_strands = static_cast<int>(strands.size());
+    j.strands = splice_loops(inner, std::move(strands), d, out.strokes);
+    return j;
+  };
+  const Region fill = slicer::offset_region(region, -(perimeters + 0.5) * d);
+  Joined best = join(fill, {});
+  // More strands than one per region and hole: a scaffold's dead-end lobes get seams
+  // (patterns/lobe_seams.h), a set of them kept when it saves a strand.
+  std::size_t bound = 0;
+  for (const auto& part : region) bound += 1 + part.holes.size();
+  if (best.strands.size() > bound && p.lattice.empty()) {
+    constexpr int kMaxTries = 32;  // joins per layer, bounding the work on a many-lobed part
+    int tries = 0;
+    const LobeSeams seams = lobe_seams(fill, best.pieces, {d, p.pitch_mm, min_half});
+    using Cut = std::pair<std::size_t, std::size_t>;  // cell, variant
+    std::vector<Cut> kept;
+    const auto attempt = [&](const std::vector<Cut>& cuts) {
+      ++tries;
+      Region cut = fill, slits;
+      for (const auto& [c, v] : cuts) {
+        cut = slicer::region_difference(cut, seams.cells[c][v]);
+        for (auto& part : slicer::offset_region(seams.cells[c][v], 0.01)) slits.push_back(std::move(part));
+      }
+      Joined j = join(cut, slits);
+      if (j.strands.size() >= best.strands.size()) return false;
+      best = std::move(j);
+      kept = cuts;
+      return true;
+    };
+    const auto more = [&] { return best.strands.size() > bound && tries < kMaxTries; };
+    // Every dead end at once (a part whose lobes each need one), then all but one or two
+    // (a strand may start or end in a lobe it need not leave), then one more cell at a time.
+    const std::size_t k = seams.dead_ends;
+    for (std::size_t v = 0; v < 2 && tries < kMaxTries && more(); ++v) {  // with each of the two whole-cell slits
+      const auto all_but = [&](std::size_t a, std::size_t b) {
+        std::vector<Cut> cuts;
+        for (std::size_t c = 0; c < k; ++c) {
+          if (c != a && c != b) cuts.emplace_back(c, v);
+        }
+        return cuts;
+      };
+      if (k > 1) attempt(all_but(k, k));
+      for (std::size_t a = 0; k > 2 && a < k && more(); ++a) attempt(all_but(a, k));
+      for (std::size_t a = 0; k > 3 && a < k && more(); ++a) {
+        for (std::size_t b = a + 1; b < k && more(); ++b) attempt(all_but(a, b));
+      }
+    }
+    for (std::size_t c = 0; c < seams.cells.size() && more(); ++c) {
+      if (std::any_of(kept.begin(), kept.end(), [&](const Cut& x) { return x.first == c; })) continue;
+      for (std::size_t v = 0; v < seams.cells[c].size() && more(); ++v) {
+        std::vector<Cut> cuts = kept;
+        cuts.emplace_back(c, v);
+        if (attempt(cuts)) break;
+      }
+    }
   }
-  std::vector<slicer::Stroke> strands = join_pieces(rs, pieces, {p.connector, d, h}, inner);
-  out.pattern_strands = static_cast<int>(strands.size());
-  strands = splice_loops(std::move(inner), std::move(strands), d, out.strokes);
+  out.pattern_strands = best.pattern_strands;
+  out.pattern_length_mm = best.pattern_length_mm;
+  std::vector<slicer::Stroke>& strands = best.strands;
   out.strokes.insert(out.strokes.end(), strands.begin(), strands.end());
   return out;
 }

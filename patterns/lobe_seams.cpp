@@ -1,0 +1,146 @@
+// Cells of a scaffold layer's chords and a slit down the middle of each (patterns/lobe_seams.h).
+#include "patterns/lobe_seams.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace strand::patterns {
+
+using slicer::Vec2;
+
+namespace {
+
+struct Chord {
+  double a = 0.0, b = 0.0;  // extent along the lines
+  double t = 0.0;           // across the lines
+  int row = 0;
+  std::vector<std::size_t> up, down;  // overlapping chords in rows row - 1 and row + 1
+};
+
+bool overlap(const Chord& p, const Chord& q) { return std::min(p.b, q.b) - std::max(p.a, q.a) > 0.0; }
+
+// A chain continues from chord i to j: i's only neighbour below is j and j's only one above is i.
+bool continues(const std::vector<Chord>& c, std::size_t i) {
+  return c[i].down.size() == 1 && c[c[i].down[0]].up.size() == 1;
+}
+
+}  // namespace
+
+LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& pieces,
+                     const SeamOptions& o) {
+  LobeSeams out;
+  if (pieces.empty() || o.pitch_mm <= 0.0 || o.nozzle_mm <= 0.0) return out;
+  // The lines' direction u (all pieces parallel and straight) and the across direction n.
+  Vec2 u = pieces.front().line.points.back() - pieces.front().line.points.front();
+  if (u.norm() <= 0.0) return out;
+  u.normalize();
+  if (u.x() < 0.0 || (u.x() == 0.0 && u.y() < 0.0)) u = -u;
+  const Vec2 n(-u.y(), u.x());
+  std::vector<Chord> chords;
+  for (const FillPiece& piece : pieces) {
+    const Vec2 &p = piece.line.points.front(), &q = piece.line.points.back();
+    for (const Vec2& v : piece.line.points) {
+      if (std::abs((v - p).dot(n)) > 1e-6) return out;  // not a straight chord along u
+    }
+    Chord c;
+    c.a = std::min(p.dot(u), q.dot(u));
+    c.b = std::max(p.dot(u), q.dot(u));
+    c.t = p.dot(n);
+    c.row = piece.line.order;
+    chords.push_back(c);
+  }
+  std::map<int, std::vector<std::size_t>> rows;
+  for (std::size_t i = 0; i < chords.size(); ++i) rows[chords[i].row].push_back(i);
+  for (auto& [row, members] : rows) {
+    const auto below = rows.find(row + 1);
+    if (below == rows.end()) continue;
+    for (const std::size_t i : members) {
+      for (const std::size_t j : below->second) {
+        if (!overlap(chords[i], chords[j])) continue;
+        chords[i].down.push_back(j);
+        chords[j].up.push_back(i);
+      }
+    }
+  }
+  // Cells: maximal chains, each started at a chord no chain continues into.
+  std::vector<std::vector<std::size_t>> cells;
+  for (const auto& [row, members] : rows) {
+    for (const std::size_t i : members) {
+      if (chords[i].up.size() == 1 && continues(chords, chords[i].up[0])) continue;
+      std::vector<std::size_t> cell{i};
+      while (continues(chords, cell.back())) cell.push_back(chords[cell.back()].down[0]);
+      cells.push_back(std::move(cell));
+    }
+  }
+  const auto dead_end = [&](const std::vector<std::size_t>& cell) {
+    return chords[cell.front()].up.empty() || chords[cell.back()].down.empty();
+  };
+  const auto first_inner = std::stable_partition(cells.begin(), cells.end(), dead_end);
+
+  // A cut chord keeps min_half on each side of a slit at least one nozzle wide; the slit
+  // is one gap wide (the two beads along it a pitch apart) where the lobe allows.
+  const double need = o.nozzle_mm + 2.0 * o.min_half_mm;
+  // Slits stay inside the fill ring by half a nozzle (the beads along the slit and the ring
+  // overlap by half at most), or by a tenth where a lobe's tip comes so close to its last
+  // chord that only then is that chord cut.
+  const slicer::Region inside = slicer::offset_region(fill, -0.5 * o.nozzle_mm);
+  const slicer::Region inside_tip = slicer::offset_region(fill, -0.1 * o.nozzle_mm);
+  // The slit through chords cell[i0..i1], from half a row before the first to half a row
+  // after the last, `width` wide, kept inside `within`.
+  const auto slit = [&](const std::vector<std::size_t>& cell, std::size_t i0, std::size_t i1, double width,
+                        const slicer::Region& within) {
+    const double dir = i1 > i0 ? (chords[cell[i1]].t > chords[cell[i0]].t ? 1.0 : -1.0)
+                               : (cell.size() > 1 && chords[cell[1]].t < chords[cell[0]].t ? -1.0 : 1.0);
+    std::vector<Vec2> mid;  // (along, across) of the slit's centre line
+    const auto centre = [&](std::size_t k) { return 0.5 * (chords[cell[k]].a + chords[cell[k]].b); };
+    mid.emplace_back(centre(i0), chords[cell[i0]].t - dir * 0.5 * o.pitch_mm);
+    for (std::size_t k = i0; k <= i1; ++k) mid.emplace_back(centre(k), chords[cell[k]].t);
+    mid.emplace_back(centre(i1), chords[cell[i1]].t + dir * 0.5 * o.pitch_mm);
+    slicer::Ring ring;
+    for (const Vec2& m : mid) ring.push_back((m.x() - width / 2) * u + m.y() * n);
+    for (auto m = mid.rbegin(); m != mid.rend(); ++m) ring.push_back((m->x() + width / 2) * u + m->y() * n);
+    return slicer::region_intersection(slicer::region_from_contours({ring}), within);
+  };
+  for (auto cell_it = cells.begin(); cell_it != cells.end(); ++cell_it) {
+    const auto& cell = *cell_it;
+    // The longest run of chords long enough to cut.
+    std::size_t best0 = 0, best_len = 0;
+    for (std::size_t i = 0; i < cell.size();) {
+      std::size_t j = i;
+      while (j < cell.size() && chords[cell[j]].b - chords[cell[j]].a >= need) ++j;
+      if (j - i > best_len) best0 = i, best_len = j - i;
+      i = j + 1;
+    }
+    if (best_len == 0) continue;
+    const std::size_t i0 = best0, i1 = best0 + best_len - 1;
+    double shortest = chords[cell[i0]].b - chords[cell[i0]].a;
+    for (std::size_t k = i0; k <= i1; ++k) shortest = std::min(shortest, chords[cell[k]].b - chords[cell[k]].a);
+    const double width = std::clamp(shortest - 2.0 * o.min_half_mm, o.nozzle_mm,
+                                    std::max(o.nozzle_mm, o.pitch_mm - o.nozzle_mm));
+    std::vector<slicer::Region> variants;
+    const auto add = [&](std::size_t a, std::size_t b, const slicer::Region& within) {
+      slicer::Region r = slit(cell, a, b, width, within);
+      if (!r.empty()) variants.push_back(std::move(r));
+    };
+    // Every chord (a half shorter than min_half is left out; the lobe is still entered and
+    // left beside its first chord, whatever the parity), close to the tip or not; then the
+    // long ones, then those with the first or last left whole.
+    add(0, cell.size() - 1, inside_tip);
+    if (variants.empty()) continue;
+    add(0, cell.size() - 1, inside);
+    if (variants.size() < 2) variants.push_back(variants.front());  // variant 1 always there
+    if (i0 > 0 || i1 + 1 < cell.size()) add(i0, i1, inside);
+    if (i1 > i0) {
+      add(i0 + 1, i1, inside);
+      add(i0, i1 - 1, inside);
+    }
+    if (i1 > i0 + 1) add(i0 + 1, i1 - 1, inside);
+    if (variants.empty()) continue;
+    out.cells.push_back(std::move(variants));
+    if (cell_it < first_inner) out.dead_ends = out.cells.size();
+  }
+  return out;
+}
+
+}  // namespace strand::patterns

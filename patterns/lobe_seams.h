@@ -1,0 +1,37 @@
+// Seams for a scaffold layer's dead ends. A serpentine of whole chords joined along the
+// boundary enters a lobe (a cow's leg below its body, a gear's tooth) and cannot come back
+// out, so a second lobe beside it becomes a strand of its own. A seam is a slit one gap
+// wide cut down the middle of a lobe's chords, inside the fill boundary: the lobe becomes
+// a ring round it, filled down one half and back up the other ("there and back"), with
+// the joins between the half chords running along the slit's two sides.
+#pragma once
+
+#include <vector>
+
+#include "patterns/region_clip.h"
+#include "slicer/region.h"
+
+namespace strand::patterns {
+
+struct SeamOptions {
+  double nozzle_mm = 0.0;     // bead width; the slit keeps one nozzle inside the fill ring
+  double pitch_mm = 0.0;      // line spacing: rows are this far apart
+  double min_half_mm = 0.0;   // each half of a cut chord is at least this long
+};
+
+struct LobeSeams {
+  std::vector<std::vector<slicer::Region>> cells;  // per cell, its slit's variants
+  std::size_t dead_ends = 0;                       // cells[0, dead_ends): at a dead end
+};
+
+// Candidate slits for `pieces` (one scaffold layer's parallel chords, `order` the line
+// index, clipped to `fill`, the region whose boundary the joins follow), one list per
+// cell of the chords (a run of rows with one chord each, every chord overlapping only its
+// neighbours in the rows beside it): the variants cut every chord of the cell, or leave
+// its first or last chord whole, for either parity of the serpentine coming in. Cells at
+// a dead end (no chord beyond one of their ends) come first, each list in row order.
+// None when the pieces are not parallel straight chords. Deterministic.
+LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& pieces,
+                     const SeamOptions& options);
+
+}  // namespace strand::patterns

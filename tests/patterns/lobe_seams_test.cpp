@@ -1,0 +1,131 @@
+// Seams down a scaffold layer's dead-end lobes: a body with legs below it (and above it)
+// fills as one crossing-free strand, each leg down one half and back up the other, where
+// whole chords joined along the boundary leave one strand per leg but one.
+#include "patterns/lobe_seams.h"
+
+#include <gtest/gtest.h>
+
+#include "patterns/region_fill.h"
+#include "patterns/registry.h"
+#include "postprocess/inspect/crossings.h"
+
+namespace strand::patterns {
+namespace {
+
+using slicer::Vec2;
+using slicer::Vec3;
+
+slicer::Ring box(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+// A body 20 mm wide, 8 mm tall, with `legs` legs `leg_mm` wide and 10 mm long at its two
+// sides, below it (and above it when `both`): the union as one region.
+slicer::Region legged(double leg_mm, bool both) {
+  std::vector<slicer::Ring> loops{box(-10, 0, 10, 8), box(-10, -10, -10 + leg_mm, 0.5),
+                                  box(10 - leg_mm, -10, 10, 0.5)};
+  if (both) {
+    loops.push_back(box(-10, 7.5, -10 + leg_mm, 18));
+    loops.push_back(box(10 - leg_mm, 7.5, 10, 18));
+  }
+  return slicer::region_from_oriented_loops(loops);
+}
+
+RegionPattern scaffold(const Vec2& half) {
+  return region_pattern(*find_generator("scaffold"), {{"nozzle", 0.6}, {"gap", 1.0}}, half);
+}
+
+std::size_t crossings(const std::vector<slicer::Stroke>& strokes) {
+  slicer::MotionProgram program;
+  program.layers.push_back({0.5, 0.5});
+  for (const slicer::Stroke& s : strokes) {
+    slicer::Move travel;
+    travel.end_mm = Vec3(s.start_mm.x(), s.start_mm.y(), 0.5);
+    program.moves.push_back(travel);
+    for (const auto& seg : s.segments) {
+      slicer::Move mv = travel;
+      mv.kind = slicer::MoveKind::Deposit;
+      mv.end_mm = Vec3(seg.end_mm.x(), seg.end_mm.y(), 0.5);
+      mv.width_mm = s.width_mm;
+      program.moves.push_back(mv);
+    }
+  }
+  return post::find_contacts(program, 0.01, 1e-3).crossings.size();
+}
+
+// Deposited length inside the box (segment midpoints), mm.
+double length_in(const std::vector<slicer::Stroke>& strokes, const slicer::Ring& where) {
+  const slicer::Region r = slicer::region_from_contours({where});
+  double len = 0.0;
+  for (const slicer::Stroke& s : strokes) {
+    Vec2 at = s.start_mm;
+    for (const auto& seg : s.segments) {
+      if (slicer::contains(r, (at + seg.end_mm) / 2.0)) len += (seg.end_mm - at).norm();
+      at = seg.end_mm;
+    }
+  }
+  return len;
+}
+
+// Layer 0's lines run along x, across the legs: each leg is a dead end.
+TEST(LobeSeams, ABodyOnTwoLegsIsOneStrandDownAndBackUpALeg) {
+  for (const double leg : {6.0, 3.0}) {
+    const slicer::Region region = legged(leg, false);
+    const RegionPattern p = scaffold({12, 20});
+    const LayerFill f = fill_layer(region, p, 0, 0, {12, 20});
+    EXPECT_EQ(f.strokes.size(), 1u) << "legs " << leg << " mm";
+    EXPECT_EQ(crossings(f.strokes), 0u);
+    // Both legs filled: about a line per pitch across each, there and back in one of them.
+    const double rows = 9.0 / p.pitch_mm;
+    for (const double x0 : {-10.0, 10.0 - leg}) {
+      EXPECT_GT(length_in(f.strokes, box(x0, -10, x0 + leg, -1)), 0.6 * rows * (leg - 0.6))
+          << "legs " << leg << " mm, the leg at x " << x0;
+    }
+  }
+}
+
+TEST(LobeSeams, AnHIsOneStrand) {
+  const slicer::Region region = legged(5.0, true);
+  const LayerFill f = fill_layer(region, scaffold({12, 20}), 0, 0, {12, 20});
+  EXPECT_EQ(f.strokes.size(), 1u);
+  EXPECT_EQ(crossings(f.strokes), 0u);
+}
+
+// The slits: the cells at a dead end come first (the legs, and the body, whose top row
+// has nothing above), each slit inside the fill region away from its boundary, a leg's
+// cutting every chord of the leg.
+TEST(LobeSeams, SlitsLieInsideTheLegsAndCutEveryChord) {
+  const slicer::Region fill = slicer::offset_region(legged(6.0, false), -0.3);
+  const RegionPattern p = scaffold({12, 20});
+  const RingSet rs = ring_set(slicer::rings_of(fill));
+  std::vector<FillPiece> pieces = clip_to_rings(rs, pattern_lines(p, 0, {12, 20}));
+  const LobeSeams seams = lobe_seams(fill, pieces, {0.6, p.pitch_mm, 0.3});
+  ASSERT_EQ(seams.dead_ends, 3u);
+  ASSERT_EQ(seams.cells.size(), 3u);
+  int legs = 0;
+  for (std::size_t c = 0; c < seams.dead_ends; ++c) {
+    const slicer::Region& slit = seams.cells[c][0];
+    ASSERT_EQ(slit.size(), 1u);
+    EXPECT_TRUE(slicer::region_difference(slit, slicer::offset_region(fill, -0.05)).empty());
+    const auto [lo, hi] = slicer::region_bounds(slit);
+    EXPECT_LT(hi.x() - lo.x(), 1.5);
+    if (lo.y() > 0.0) continue;  // the body's
+    ++legs;
+    EXPECT_GT(lo.y(), -10.0) << "slit " << c << " stays inside its leg's tip";
+    EXPECT_LT(hi.y(), 1.6) << "slit " << c << " stops short of the body's first whole chord";
+    // Every chord of the leg crosses the slit.
+    for (const FillPiece& piece : pieces) {
+      const Vec2 a = piece.line.points.front(), b = piece.line.points.back();
+      const double y = a.y();
+      if (y > -0.5 || std::max(a.x(), b.x()) < lo.x() || std::min(a.x(), b.x()) > hi.x()) continue;
+      if (y < lo.y() || y > hi.y()) ADD_FAILURE() << "the chord at y " << y << " is not cut";
+    }
+  }
+  EXPECT_EQ(legs, 2);
+  // Chords along the legs (layer 1) have no dead end but the body's: no seam helps there.
+  const std::vector<FillPiece> across = clip_to_rings(rs, pattern_lines(p, 1, {12, 20}));
+  for (const auto& cell : lobe_seams(fill, across, {0.6, p.pitch_mm, 0.3}).cells) EXPECT_FALSE(cell.empty());
+}
+
+}  // namespace
+}  // namespace strand::patterns
