@@ -160,6 +160,40 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   out.pattern_strands = best.pattern_strands;
   out.pattern_length_mm = best.pattern_length_mm;
   std::vector<slicer::Stroke>& strands = best.strands;
+  // Still over the bound: an open strand shorter than four nozzles (a stub left in a lobe
+  // too narrow to join it) is left out, shortest first, where its region has other strands
+  // over its bound, as a lattice's short pieces are: a start and a stop with hardly a bead
+  // between them.
+  if (strands.size() > bound) {
+    const auto part_of = [&](const slicer::Stroke& s) {
+      for (std::size_t i = 0; i < region.size(); ++i) {
+        if (slicer::contains(Region{region[i]}, s.start_mm)) return static_cast<int>(i);
+      }
+      return -1;
+    };
+    std::vector<int> parts;
+    std::vector<int> over(region.size(), 0);
+    for (std::size_t i = 0; i < region.size(); ++i) over[i] = -1 - static_cast<int>(region[i].holes.size());
+    for (const auto& s : strands) {
+      parts.push_back(part_of(s));
+      if (parts.back() >= 0) ++over[static_cast<std::size_t>(parts.back())];
+    }
+    for (;;) {
+      std::size_t stub = strands.size();
+      for (std::size_t i = 0; i < strands.size(); ++i) {
+        const bool open = (strands[i].end_mm() - strands[i].start_mm).norm() > 1e-9;
+        if (parts[i] < 0 || over[static_cast<std::size_t>(parts[i])] <= 0 || !open) continue;
+        const double len = slicer::stroke_length(strands[i]);
+        if (len < 4.0 * d && (stub == strands.size() || len < slicer::stroke_length(strands[stub]))) stub = i;
+      }
+      if (stub == strands.size()) break;
+      out.pattern_length_mm -= slicer::stroke_length(strands[stub]);
+      --out.pattern_strands;
+      --over[static_cast<std::size_t>(parts[stub])];
+      strands.erase(strands.begin() + static_cast<std::ptrdiff_t>(stub));
+      parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(stub));
+    }
+  }
   out.strokes.insert(out.strokes.end(), strands.begin(), strands.end());
   return out;
 }
