@@ -30,7 +30,9 @@ bool continues(const std::vector<Chord>& c, std::size_t i) {
 LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& pieces,
                      const SeamOptions& o) {
   LobeSeams out;
-  if (pieces.empty() || o.pitch_mm <= 0.0 || o.nozzle_mm <= 0.0) return out;
+  const bool lines = std::all_of(pieces.begin(), pieces.end(),
+                                 [](const FillPiece& piece) { return piece.line.points.size() >= 2; });
+  if (pieces.empty() || !lines || o.pitch_mm <= 0.0 || o.nozzle_mm <= 0.0) return out;
   // The lines' direction u (all pieces parallel and straight) and the across direction n.
   Vec2 u = pieces.front().line.points.back() - pieces.front().line.points.front();
   if (u.norm() <= 0.0) return out;

@@ -14,9 +14,9 @@
 namespace strand::patterns {
 
 struct SeamOptions {
-  double nozzle_mm = 0.0;     // bead width; the slit keeps one nozzle inside the fill ring
+  double nozzle_mm = 0.0;     // bead width: the narrowest slit
   double pitch_mm = 0.0;      // line spacing: rows are this far apart
-  double min_half_mm = 0.0;   // each half of a cut chord is at least this long
+  double min_half_mm = 0.0;   // a cut chord's halves are kept at least this long
 };
 
 struct LobeSeams {
@@ -25,12 +25,14 @@ struct LobeSeams {
 };
 
 // Candidate slits for `pieces` (one scaffold layer's parallel chords, `order` the line
-// index, clipped to `fill`, the region whose boundary the joins follow), one list per
-// cell of the chords (a run of rows with one chord each, every chord overlapping only its
-// neighbours in the rows beside it): the variants cut every chord of the cell, or leave
-// its first or last chord whole, for either parity of the serpentine coming in. Cells at
-// a dead end (no chord beyond one of their ends) come first, each list in row order.
-// None when the pieces are not parallel straight chords. Deterministic.
+// index, clipped to `fill`, the region whose boundary the joins follow), one list per cell of
+// the chords (a run of rows with one chord each, every chord overlapping only its neighbours
+// in the rows beside it), each slit as wide as a gap where the cell's chords leave min_half
+// beside it, at least a nozzle. Variants 0 and 1 cut every chord of the cell, kept a tenth
+// and half a nozzle inside the ring (a chord close to the lobe's tip is cut only by the
+// first); then the chords long enough to halve, and those with the first or last left whole.
+// Cells at a dead end (no chord beyond one of their ends) come first, in row order. None when
+// the pieces are not parallel straight chords. Deterministic.
 LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& pieces,
                      const SeamOptions& options);
 

@@ -132,7 +132,8 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     };
     const auto more = [&] { return best.strands.size() > bound && tries < kMaxTries; };
     // Every dead end at once (a part whose lobes each need one), then all but one or two
-    // (a strand may start or end in a lobe it need not leave), then one more cell at a time.
+    // (a strand may start or end in a lobe it need not leave; up to 12 and 6 dead ends, past
+    // which the choice is too wide to try), then one more cell at a time.
     const std::size_t k = seams.dead_ends;
     for (std::size_t v = 0; v < 2 && tries < kMaxTries && more(); ++v) {  // with each of the two whole-cell slits
       const auto all_but = [&](std::size_t a, std::size_t b) {
@@ -143,8 +144,8 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
         return cuts;
       };
       if (k > 1) attempt(all_but(k, k));
-      for (std::size_t a = 0; k > 2 && a < k && more(); ++a) attempt(all_but(a, k));
-      for (std::size_t a = 0; k > 3 && a < k && more(); ++a) {
+      for (std::size_t a = 0; k > 2 && k <= 12 && a < k && more(); ++a) attempt(all_but(a, k));
+      for (std::size_t a = 0; k > 3 && k <= 6 && a < k && more(); ++a) {
         for (std::size_t b = a + 1; b < k && more(); ++b) attempt(all_but(a, b));
       }
     }
