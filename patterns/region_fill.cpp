@@ -117,6 +117,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     const LobeSeams seams = lobe_seams(fill, best.pieces, {d, p.pitch_mm, min_half});
     using Cut = std::pair<std::size_t, std::size_t>;  // cell, variant
     std::vector<Cut> kept;
+    bool fewer = false;  // an attempt with fewer seams than kept: as many strands will do
     const auto attempt = [&](const std::vector<Cut>& cuts) {
       ++tries;
       Region cut = fill, slits;
@@ -125,7 +126,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
         for (auto& part : slicer::offset_region(seams.cells[c][v], 0.01)) slits.push_back(std::move(part));
       }
       Joined j = join(cut, slits);
-      if (j.strands.size() >= best.strands.size()) return false;
+      if (j.strands.size() > best.strands.size() || (j.strands.size() == best.strands.size() && !fewer)) return false;
       best = std::move(j);
       kept = cuts;
       return true;
@@ -135,7 +136,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     // (a strand may start or end in a lobe it need not leave; up to 12 and 6 dead ends, past
     // which the choice is too wide to try), then one more cell at a time.
     const std::size_t k = seams.dead_ends;
-    for (std::size_t v = 0; v < 2 && tries < kMaxTries && more(); ++v) {  // with each of the two whole-cell slits
+    for (std::size_t v = 0; v < 2 && more(); ++v) {  // with each of the two whole-cell slits
       const auto all_but = [&](std::size_t a, std::size_t b) {
         std::vector<Cut> cuts;
         for (std::size_t c = 0; c < k; ++c) {
@@ -156,6 +157,14 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
         cuts.emplace_back(c, v);
         if (attempt(cuts)) break;
       }
+    }
+    // Then each seam kept is dropped again where the layer needs it not (a body cut along
+    // with its legs), so the pattern changes no more than it must.
+    fewer = true;
+    for (std::size_t i = kept.size(); i-- > 0 && tries < kMaxTries + 12;) {
+      std::vector<Cut> cuts = kept;
+      cuts.erase(cuts.begin() + static_cast<std::ptrdiff_t>(i));
+      attempt(cuts);
     }
   }
   out.pattern_strands = best.pattern_strands;
