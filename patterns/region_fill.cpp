@@ -161,7 +161,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     // Then each seam kept is dropped again where the layer needs it not (a body cut along
     // with its legs), so the pattern changes no more than it must.
     fewer = true;
-    for (std::size_t i = kept.size(); i-- > 0 && tries < kMaxTries + 12;) {
+    for (std::size_t i = kept.size() > 1 ? kept.size() : 0; i-- > 0 && tries < kMaxTries + 12;) {
       std::vector<Cut> cuts = kept;
       cuts.erase(cuts.begin() + static_cast<std::ptrdiff_t>(i));
       attempt(cuts);
