@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <limits>
-#include <numeric>
 
 #include "patterns/lobe_seams.h"
 #include "patterns/perimeter_splice.h"
@@ -62,6 +61,111 @@ double line_length(const PatternLine& l) {
   return len;
 }
 
+// A layer's pattern clipped to a fill boundary and joined, the innermost loops spliced in.
+struct Joined {
+  std::vector<slicer::Stroke> strands;  // with their loops, then the loops left over
+  std::vector<FillPiece> pieces;
+  int pattern_strands = 0;
+  double pattern_length_mm = 0.0;
+};
+
+// `best` (the layer joined without seams, over `bound` strands) again with sets of `seams`
+// cut out of `fill` (patterns/lobe_seams.h), `join(cut fill, slits)` joining each try: every
+// dead end at once (a part whose lobes each need one), then all but one or two (a strand may
+// start or end in a lobe it need not leave; up to 12 and 6 dead ends, past which the choice is
+// too wide to try), then one more cell at a time; a set is kept when it saves a strand. Then
+// each seam kept is dropped again where as many strands do without it (a body cut along with
+// its legs), so the pattern changes no more than it must.
+template <class Join>
+Joined with_seams(const Region& fill, const LobeSeams& seams, std::size_t bound, Joined best,
+                  const Join& join) {
+  constexpr int kMaxTries = 32;  // joins per layer, bounding the work on a many-lobed part
+  int tries = 0;
+  using Cut = std::pair<std::size_t, std::size_t>;  // cell, variant
+  std::vector<Cut> kept;
+  bool fewer = false;  // an attempt with fewer seams than kept: as many strands will do
+  const auto attempt = [&](const std::vector<Cut>& cuts) {
+    ++tries;
+    Region cut = fill, slits;
+    for (const auto& [c, v] : cuts) {
+      cut = slicer::region_difference(cut, seams.cells[c][v]);
+      for (auto& part : slicer::offset_region(seams.cells[c][v], 0.01)) slits.push_back(std::move(part));
+    }
+    Joined j = join(cut, slits);
+    if (j.strands.size() > best.strands.size() || (j.strands.size() == best.strands.size() && !fewer)) return false;
+    best = std::move(j);
+    kept = cuts;
+    return true;
+  };
+  const auto more = [&] { return best.strands.size() > bound && tries < kMaxTries; };
+  const std::size_t k = seams.dead_ends;
+  for (std::size_t v = 0; v < 2 && more(); ++v) {  // with each of the two whole-cell slits
+    const auto all_but = [&](std::size_t a, std::size_t b) {
+      std::vector<Cut> cuts;
+      for (std::size_t c = 0; c < k; ++c) {
+        if (c != a && c != b) cuts.emplace_back(c, v);
+      }
+      return cuts;
+    };
+    if (k > 1) attempt(all_but(k, k));
+    for (std::size_t a = 0; k > 2 && k <= 12 && a < k && more(); ++a) attempt(all_but(a, k));
+    for (std::size_t a = 0; k > 3 && k <= 6 && a < k && more(); ++a) {
+      for (std::size_t b = a + 1; b < k && more(); ++b) attempt(all_but(a, b));
+    }
+  }
+  for (std::size_t c = 0; c < seams.cells.size() && more(); ++c) {
+    if (std::any_of(kept.begin(), kept.end(), [&](const Cut& x) { return x.first == c; })) continue;
+    for (std::size_t v = 0; v < seams.cells[c].size() && more(); ++v) {
+      std::vector<Cut> cuts = kept;
+      cuts.emplace_back(c, v);
+      if (attempt(cuts)) break;
+    }
+  }
+  fewer = true;
+  for (std::size_t i = kept.size() > 1 ? kept.size() : 0; i-- > 0 && tries < kMaxTries + 12;) {
+    std::vector<Cut> cuts = kept;
+    cuts.erase(cuts.begin() + static_cast<std::ptrdiff_t>(i));
+    attempt(cuts);
+  }
+  return best;
+}
+
+// A layer still over the bound: an open strand shorter than four nozzles (a stub left in a
+// lobe too narrow to join it) is left out, shortest first, where its region has other
+// strands over its bound, as a lattice's short pieces are: a start and a stop with hardly a
+// bead between them. `out`'s pattern sums lose what is left out.
+void drop_stubs(const Region& region, double nozzle_mm, std::vector<slicer::Stroke>& strands,
+                LayerFill& out) {
+  const auto part_of = [&](const slicer::Stroke& s) {
+    for (std::size_t i = 0; i < region.size(); ++i) {
+      if (slicer::contains(Region{region[i]}, s.start_mm)) return static_cast<int>(i);
+    }
+    return -1;
+  };
+  std::vector<int> parts;
+  std::vector<int> over(region.size(), 0);
+  for (std::size_t i = 0; i < region.size(); ++i) over[i] = -1 - static_cast<int>(region[i].holes.size());
+  for (const auto& s : strands) {
+    parts.push_back(part_of(s));
+    if (parts.back() >= 0) ++over[static_cast<std::size_t>(parts.back())];
+  }
+  for (;;) {
+    std::size_t stub = strands.size();
+    for (std::size_t i = 0; i < strands.size(); ++i) {
+      const bool open = (strands[i].end_mm() - strands[i].start_mm).norm() > 1e-9;
+      if (parts[i] < 0 || over[static_cast<std::size_t>(parts[i])] <= 0 || !open) continue;
+      const double len = slicer::stroke_length(strands[i]);
+      if (len < 4.0 * nozzle_mm && (stub == strands.size() || len < slicer::stroke_length(strands[stub]))) stub = i;
+    }
+    if (stub == strands.size()) return;
+    out.pattern_length_mm -= slicer::stroke_length(strands[stub]);
+    --out.pattern_strands;
+    --over[static_cast<std::size_t>(parts[stub])];
+    strands.erase(strands.begin() + static_cast<std::ptrdiff_t>(stub));
+    parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(stub));
+  }
+}
+
 }  // namespace
 
 LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, int perimeters,
@@ -76,13 +180,6 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
       (k + 1 == perimeters ? inner : out.strokes).push_back(ring_stroke(ring, d, h));
     }
   }
-  // The pattern clipped to `fill` and joined, the innermost loops spliced in.
-  struct Joined {
-    std::vector<slicer::Stroke> strands;  // with their loops, then the loops left over
-    std::vector<FillPiece> pieces;
-    int pattern_strands = 0;
-    double pattern_length_mm = 0.0;
-  };
   // `slits`: seams cut out of `fill`, grown a little; half chords ending on one may be as
   // short as half a nozzle (a narrow lobe).
   const double min_half = 0.5 * d;
@@ -107,103 +204,17 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   };
   const Region fill = slicer::offset_region(region, -(perimeters + 0.5) * d);
   Joined best = join(fill, {});
-  // More strands than one per region and hole: a scaffold's dead-end lobes get seams
-  // (patterns/lobe_seams.h), a set of them kept when it saves a strand.
+  // More strands than one per region and hole: a scaffold's dead-end lobes get seams.
   std::size_t bound = 0;
   for (const auto& part : region) bound += 1 + part.holes.size();
   if (best.strands.size() > bound && p.lattice.empty()) {
-    constexpr int kMaxTries = 32;  // joins per layer, bounding the work on a many-lobed part
-    int tries = 0;
     const LobeSeams seams = lobe_seams(fill, best.pieces, {d, p.pitch_mm, min_half});
-    using Cut = std::pair<std::size_t, std::size_t>;  // cell, variant
-    std::vector<Cut> kept;
-    bool fewer = false;  // an attempt with fewer seams than kept: as many strands will do
-    const auto attempt = [&](const std::vector<Cut>& cuts) {
-      ++tries;
-      Region cut = fill, slits;
-      for (const auto& [c, v] : cuts) {
-        cut = slicer::region_difference(cut, seams.cells[c][v]);
-        for (auto& part : slicer::offset_region(seams.cells[c][v], 0.01)) slits.push_back(std::move(part));
-      }
-      Joined j = join(cut, slits);
-      if (j.strands.size() > best.strands.size() || (j.strands.size() == best.strands.size() && !fewer)) return false;
-      best = std::move(j);
-      kept = cuts;
-      return true;
-    };
-    const auto more = [&] { return best.strands.size() > bound && tries < kMaxTries; };
-    // Every dead end at once (a part whose lobes each need one), then all but one or two
-    // (a strand may start or end in a lobe it need not leave; up to 12 and 6 dead ends, past
-    // which the choice is too wide to try), then one more cell at a time.
-    const std::size_t k = seams.dead_ends;
-    for (std::size_t v = 0; v < 2 && more(); ++v) {  // with each of the two whole-cell slits
-      const auto all_but = [&](std::size_t a, std::size_t b) {
-        std::vector<Cut> cuts;
-        for (std::size_t c = 0; c < k; ++c) {
-          if (c != a && c != b) cuts.emplace_back(c, v);
-        }
-        return cuts;
-      };
-      if (k > 1) attempt(all_but(k, k));
-      for (std::size_t a = 0; k > 2 && k <= 12 && a < k && more(); ++a) attempt(all_but(a, k));
-      for (std::size_t a = 0; k > 3 && k <= 6 && a < k && more(); ++a) {
-        for (std::size_t b = a + 1; b < k && more(); ++b) attempt(all_but(a, b));
-      }
-    }
-    for (std::size_t c = 0; c < seams.cells.size() && more(); ++c) {
-      if (std::any_of(kept.begin(), kept.end(), [&](const Cut& x) { return x.first == c; })) continue;
-      for (std::size_t v = 0; v < seams.cells[c].size() && more(); ++v) {
-        std::vector<Cut> cuts = kept;
-        cuts.emplace_back(c, v);
-        if (attempt(cuts)) break;
-      }
-    }
-    // Then each seam kept is dropped again where the layer needs it not (a body cut along
-    // with its legs), so the pattern changes no more than it must.
-    fewer = true;
-    for (std::size_t i = kept.size() > 1 ? kept.size() : 0; i-- > 0 && tries < kMaxTries + 12;) {
-      std::vector<Cut> cuts = kept;
-      cuts.erase(cuts.begin() + static_cast<std::ptrdiff_t>(i));
-      attempt(cuts);
-    }
+    best = with_seams(fill, seams, bound, std::move(best), join);
   }
   out.pattern_strands = best.pattern_strands;
   out.pattern_length_mm = best.pattern_length_mm;
   std::vector<slicer::Stroke>& strands = best.strands;
-  // Still over the bound: an open strand shorter than four nozzles (a stub left in a lobe
-  // too narrow to join it) is left out, shortest first, where its region has other strands
-  // over its bound, as a lattice's short pieces are: a start and a stop with hardly a bead
-  // between them.
-  if (strands.size() > bound) {
-    const auto part_of = [&](const slicer::Stroke& s) {
-      for (std::size_t i = 0; i < region.size(); ++i) {
-        if (slicer::contains(Region{region[i]}, s.start_mm)) return static_cast<int>(i);
-      }
-      return -1;
-    };
-    std::vector<int> parts;
-    std::vector<int> over(region.size(), 0);
-    for (std::size_t i = 0; i < region.size(); ++i) over[i] = -1 - static_cast<int>(region[i].holes.size());
-    for (const auto& s : strands) {
-      parts.push_back(part_of(s));
-      if (parts.back() >= 0) ++over[static_cast<std::size_t>(parts.back())];
-    }
-    for (;;) {
-      std::size_t stub = strands.size();
-      for (std::size_t i = 0; i < strands.size(); ++i) {
-        const bool open = (strands[i].end_mm() - strands[i].start_mm).norm() > 1e-9;
-        if (parts[i] < 0 || over[static_cast<std::size_t>(parts[i])] <= 0 || !open) continue;
-        const double len = slicer::stroke_length(strands[i]);
-        if (len < 4.0 * d && (stub == strands.size() || len < slicer::stroke_length(strands[stub]))) stub = i;
-      }
-      if (stub == strands.size()) break;
-      out.pattern_length_mm -= slicer::stroke_length(strands[stub]);
-      --out.pattern_strands;
-      --over[static_cast<std::size_t>(parts[stub])];
-      strands.erase(strands.begin() + static_cast<std::ptrdiff_t>(stub));
-      parts.erase(parts.begin() + static_cast<std::ptrdiff_t>(stub));
-    }
-  }
+  if (strands.size() > bound) drop_stubs(region, d, strands, out);
   out.strokes.insert(out.strokes.end(), strands.begin(), strands.end());
   return out;
 }

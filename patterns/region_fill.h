@@ -18,7 +18,9 @@ namespace strand::patterns {
 struct LayerFill {
   // Outer perimeter levels, then the pattern strands with the innermost perimeter loops
   // spliced into them where a strand ends beside one (patterns/perimeter_splice.h), then
-  // the loops left over.
+  // the loops left over. A scaffold layer over the strand bound (1 per region + 1 per hole)
+  // gets seams down its dead-end lobes where they save strands (patterns/lobe_seams.h), then
+  // leaves out lone stubs shorter than four nozzles in a region still over it.
   std::vector<slicer::Stroke> strokes;
   int regions = 0;                 // connected parts of the layer's region
   int pattern_strands = 0;         // strands of the pattern (perimeters excluded)
