@@ -138,7 +138,6 @@ LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& p
       add(i0, i1 - 1, inside);
     }
     if (i1 > i0 + 1) add(i0 + 1, i1 - 1, inside);
-    if (variants.empty()) continue;
     out.cells.push_back(std::move(variants));
     if (cell_it < first_inner) out.dead_ends = out.cells.size();
   }

@@ -183,10 +183,11 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   // `slits`: seams cut out of `fill`, grown a little; half chords ending on one may be as
   // short as half a nozzle (a narrow lobe).
   const double min_half = 0.5 * d;
+  const std::vector<PatternLine> lines = pattern_lines(p, layer, half);  // the same for every try
   const auto join = [&](const Region& fill, const Region& slits) {
     Joined j;
     const RingSet rs = ring_set(slicer::rings_of(fill));
-    for (FillPiece& piece : clip_to_rings(rs, pattern_lines(p, layer, half))) {
+    for (FillPiece& piece : clip_to_rings(rs, lines)) {
       const double len = line_length(piece.line);
       const auto on_slit = [&] {
         return len >= min_half && (slicer::contains(slits, piece.line.points.front()) ||
