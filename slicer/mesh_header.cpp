@@ -8,6 +8,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
 #include "slicer/input_error.h"
@@ -149,6 +150,24 @@ std::string token_text(double v) {
   return buf;
 }
 
+// The words of `line` as `>>` splits them (at spaces, tabs and line ends), without an
+// istringstream per line: those cost more than OpenMesh's own reading of the file. Each word
+// is followed in `line` by a space or the end of the string, so strtod reads no further.
+void split_words(const std::string& line, std::vector<std::string_view>& words) {
+  const auto space = [](char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };
+  words.clear();
+  for (std::size_t i = 0; i < line.size();) {
+    while (i < line.size() && space(line[i])) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !space(line[j])) ++j;
+    if (j > i) words.emplace_back(line.data() + i, j - i);
+    i = j;
+  }
+}
+
+// `line` up to its first '#', a comment.
+void drop_comment(std::string& line) { line.resize(std::min(line.size(), line.find('#'))); }
+
 }  // namespace
 
 void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
@@ -156,18 +175,19 @@ void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
   const auto fail = [&](const std::string& why) {
     throw InputError("mesh = " + path + ": OFF " + why);
   };
-  std::string token;
+  std::vector<std::string_view> words;
   std::vector<double> counts;
   bool keyword = false;
   long long index = 0, line_no = 0, keyword_line = 0;
   std::uint64_t vertex_lines = 0, triangles = 0;
   for (std::string line; std::getline(in, line);) {
     ++line_no;
-    std::istringstream words(line.substr(0, line.find('#')));
+    drop_comment(line);
+    split_words(line, words);
     const bool body = counts.size() == 3;  // vertex lines, then face lines
     int on_line = 0;
     double corners = 0.0;
-    while (words >> token) {
+    for (const std::string_view token : words) {
       ++index;
       ++on_line;
       if (!keyword) {  // OFF with its optional prefixes (C, N, ST, 4, n)
@@ -184,8 +204,8 @@ void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
         fail("line 1 holds only OFF: the vertex, face and edge counts go on the next line");
       }
       char* end = nullptr;
-      const double v = std::strtod(token.c_str(), &end);
-      if (end != token.c_str() + token.size() || !std::isfinite(v)) {
+      const double v = std::strtod(token.data(), &end);
+      if (end != token.data() + token.size() || !std::isfinite(v)) {
         fail("token " + std::to_string(index) + " is not a number");
       }
       if (counts.size() < 3 && !body) counts.push_back(v);
@@ -221,17 +241,18 @@ void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
 
 namespace {
 
-bool non_finite_token(const std::string& t) {
+// `t` is a word of split_words: strtod stops at its end.
+bool non_finite_token(std::string_view t) {
   if (t.empty()) return false;
   char* end = nullptr;
-  const double v = std::strtod(t.c_str(), &end);
-  return end == t.c_str() + t.size() && !std::isfinite(v);
+  const double v = std::strtod(t.data(), &end);
+  return end == t.data() + t.size() && !std::isfinite(v);
 }
 
 [[noreturn]] void non_finite(const std::string& path, const std::string& where,
-                             const std::string& token) {
+                             std::string_view token) {
   throw InputError("mesh = " + path + ": " + where + " has a non-finite coordinate ('" +
-                   token.substr(0, 20) + "': NaN or infinity)");
+                   std::string(token.substr(0, 20)) + "': NaN or infinity)");
 }
 
 }  // namespace
@@ -265,46 +286,43 @@ void vet_finite_vertices(const std::string& path, const std::string& ext,
   in.clear();
   in.seekg(0);
   std::string line;
+  std::vector<std::string_view> words;
   int line_no = 0;
   bool body = ext != ".ply";  // PLY: only the lines after end_header
   bool ply_ascii = false;
   while (std::getline(in, line)) {
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream w(line);
-    std::string first;
-    if (!(w >> first)) continue;
+    split_words(line, words);
+    if (words.empty()) continue;
+    const std::string_view first = words[0];
     if (!body) {
-      if (first == "format") {
-        std::string kind;
-        w >> kind;
-        ply_ascii = kind == "ascii";
-      }
+      if (first == "format") ply_ascii = words.size() > 1 && words[1] == "ascii";
       if (first == "end_header") {
         if (!ply_ascii) return;  // binary bodies are checked after reading
         body = true;
       }
       continue;
     }
-    std::vector<std::string> tokens;
+    std::size_t from = 0;  // the first coordinate word
     if (ext == ".stl") {
       if (first != "vertex") continue;
+      from = 1;
     } else if (ext == ".obj") {
       if (first != "v") continue;
+      from = 1;
     } else if (first[0] == '#') {
       continue;
-    } else {
-      tokens.push_back(first);
     }
-    for (std::string t; w >> t;) tokens.push_back(t);
-    for (const std::string& t : tokens) {
+    for (std::size_t k = from; k < words.size(); ++k) {
+      const std::string_view t = words[k];
       if (non_finite_token(t)) non_finite(path, "line " + std::to_string(line_no), t);
       if (ext == ".ply") {  // OpenMesh spun for two minutes on a word in an ASCII PLY body
         char* end = nullptr;
-        std::strtod(t.c_str(), &end);
-        if (end != t.c_str() + t.size()) {
+        std::strtod(t.data(), &end);
+        if (end != t.data() + t.size()) {
           throw InputError("mesh = " + path + ": PLY line " + std::to_string(line_no) + ": '" +
-                           t.substr(0, 20) + "' is not a number");
+                           std::string(t.substr(0, 20)) + "' is not a number");
         }
       }
     }
@@ -315,19 +333,20 @@ void vet_obj_faces(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   long long line_no = 0;
   std::uint64_t triangles = 0;
+  std::vector<std::string_view> words;
   for (std::string line; std::getline(in, line);) {
     ++line_no;
-    std::istringstream words(line.substr(0, line.find('#')));
-    std::string word;
-    if (!(words >> word) || word != "f") continue;
+    drop_comment(line);
+    split_words(line, words);
+    if (words.empty() || words[0] != "f") continue;
     int corners = 0;
-    while (words >> word) {
+    for (std::size_t k = 1; k < words.size(); ++k) {
       // "v", "v/vt", "v//vn" or "v/vt/vn": the vertex index is a non-zero integer.
-      const std::string v = word.substr(0, word.find('/'));
+      const std::string_view v = words[k].substr(0, words[k].find('/'));
       const std::size_t digits = v.find_first_not_of("-+");
-      const bool index = digits != std::string::npos && digits <= 1 &&
-                         v.find_first_not_of("0123456789", digits) == std::string::npos &&
-                         v.find_first_not_of("0", digits) != std::string::npos;
+      const bool index = digits != std::string_view::npos && digits <= 1 &&
+                         v.find_first_not_of("0123456789", digits) == std::string_view::npos &&
+                         v.find_first_not_of("0", digits) != std::string_view::npos;
       if (!index) {
         throw InputError("mesh = " + path + ": OBJ line " + std::to_string(line_no) +
                          ": a face corner must start with a vertex number");

@@ -69,6 +69,24 @@ TEST(MeshCheck, OverlappingBoxesSelfIntersect) {
   EXPECT_NE(prepare_error(a, true).find("--repair does not cut"), std::string::npos);
 }
 
+TEST(MeshCheck, BoxesMeetingAtACornerTouchAtASingleVertex) {
+  // Every edge is used once each way, but the shared corner has two fans of triangles.
+  Mesh a = box_mesh(Vec3(1, 1, 1));
+  const Mesh b = box_mesh(Vec3(1, 1, 1));
+  const int base = static_cast<int>(a.vertices_mm.size());
+  for (const Vec3& v : b.vertices_mm) a.vertices_mm.push_back(v + Vec3(1, 1, 1));
+  for (const auto& t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  const MeshCheck c = check_mesh(a);
+  EXPECT_TRUE(c.touching_vertex);
+  EXPECT_EQ(c.non_manifold_edges + c.border_edges + c.misoriented_edges, 0u);
+  EXPECT_NE(c.problem.find("single vertex"), std::string::npos) << c.problem;
+  // Apart, each box is sound.
+  for (auto& v : a.vertices_mm) {
+    if (&v - a.vertices_mm.data() >= base) v += Vec3(0.5, 0, 0);
+  }
+  EXPECT_TRUE(check_mesh(a).ok()) << check_mesh(a).problem;
+}
+
 TEST(MeshCheck, InsideOutIsReversedAndReported) {
   Mesh m = box_mesh(Vec3(1, 2, 3));
   for (auto& t : m.triangles) std::swap(t[1], t[2]);
