@@ -102,19 +102,27 @@ std::vector<std::string> layer_summary_lines(const nlohmann::json& derived) {
     out.push_back(line);
   }
   if (derived.contains("strands_per_region")) {
-    int most = 0, exceeded = 0;
-    for (const auto& layer : derived.at("strands_per_region")) {
+    int most = 0;
+    std::vector<std::size_t> exceeded;  // layer numbers, as the G-code's ;LAYER: comments
+    const auto& layers = derived.at("strands_per_region");
+    for (std::size_t k = 0; k < layers.size(); ++k) {
       bool over = false;
-      for (const auto& r : layer) {
+      for (const auto& r : layers[k]) {
         const int strands = r.at("strands").get<int>();
         most = std::max(most, strands);
         over = over || strands > 1 + r.at("holes").get<int>();
       }
-      exceeded += over ? 1 : 0;
+      if (over) exceeded.push_back(k);
     }
-    out.push_back("  strands        at most " + std::to_string(most) +
-                  " per region (bound: 1 + 1 per hole, exceeded in " + std::to_string(exceeded) +
-                  " layers)");
+    std::string line = "  strands        at most " + std::to_string(most) +
+                       " per region (bound: 1 + 1 per hole, exceeded in " + std::to_string(exceeded.size()) +
+                       " layers";
+    constexpr std::size_t kNamed = 5;
+    for (std::size_t i = 0; i < std::min(kNamed, exceeded.size()); ++i) {
+      line += (i ? ", " : ": ") + std::to_string(exceeded[i]);
+    }
+    if (exceeded.size() > kNamed) line += " and " + std::to_string(exceeded.size() - kNamed) + " more";
+    out.push_back(line + ")");
   }
   return out;
 }

@@ -70,7 +70,11 @@ TEST(SliceLayerStats, SummaryLinesNameFiveLayersAndTheBound) {
   EXPECT_EQ(layer_summary_lines(d),
             (std::vector<std::string>{
                 "  empty layers   0",
-                "  strands        at most 3 per region (bound: 1 + 1 per hole, exceeded in 1 layers)"}));
+                "  strands        at most 3 per region (bound: 1 + 1 per hole, exceeded in 1 layers: 1)"}));
+  for (int k = 0; k < 6; ++k) d["strands_per_region"].push_back(nlohmann::json::parse(R"([{"strands":2,"holes":0}])"));
+  EXPECT_EQ(layer_summary_lines(d)[1],
+            "  strands        at most 3 per region (bound: 1 + 1 per hole, exceeded in 7 layers: 1, 3, 4, "
+            "5, 6 and 2 more)");
   for (int k = 0; k < 7; ++k) d["empty_material_layers"].push_back({{"layer", k}, {"z_mm", 0.5 * k + 0.12}});
   EXPECT_EQ(layer_summary_lines(d)[0],
             "  empty layers   7 with material but no deposit: z 0.120, 0.620, 1.120, 1.620, 2.120 "
