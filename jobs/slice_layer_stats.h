@@ -13,19 +13,6 @@
 
 namespace strand::jobs {
 
-struct RegionStrands {
-  int strands = 0;  // extruding runs (perimeters included) whose deposit lies in the region
-  int holes = 0;    // the region's holes
-  bool operator==(const RegionStrands&) const = default;
-};
-
-// Per connected part of `region` (in its order): the strands of `strokes` printed there. A
-// strand is a run of strokes each starting where the previous one ended (no travel between
-// them: one strand in the file, as the estimate counts them); it belongs to the part that
-// holds most of its points.
-std::vector<RegionStrands> strands_per_region(const slicer::Region& region,
-                                              const std::vector<slicer::Stroke>& strokes);
-
 // Whether a layer has material a bead is meant for: some part of the region at least half a
 // bead wide (narrower slivers are left out, as the thin-feature rule says).
 bool has_material(const slicer::Region& region, double nozzle_mm);

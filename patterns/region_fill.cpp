@@ -7,6 +7,7 @@
 
 #include "patterns/lobe_seams.h"
 #include "patterns/perimeter_splice.h"
+#include "patterns/region_strands.h"
 #include "patterns/region_join.h"
 #include "slicer/input_error.h"
 
@@ -69,15 +70,15 @@ struct Joined {
   double pattern_length_mm = 0.0;
 };
 
-// `best` (the layer joined without seams, over `bound` strands) again with sets of `seams`
+// `best` (the layer joined without seams, `over` the bound) again with sets of `seams`
 // cut out of `fill` (patterns/lobe_seams.h), `join(cut fill, slits)` joining each try: every
 // dead end at once (a part whose lobes each need one), then all but one or two (a strand may
 // start or end in a lobe it need not leave; up to 12 and 6 dead ends, past which the choice is
 // too wide to try), then one more cell at a time; a set is kept when it saves a strand. Then
 // each seam kept is dropped again where as many strands do without it (a body cut along with
 // its legs), so the pattern changes no more than it must.
-template <class Join>
-Joined with_seams(const Region& fill, const LobeSeams& seams, std::size_t bound, Joined best,
+template <class Join, class Over>
+Joined with_seams(const Region& fill, const LobeSeams& seams, const Over& over, Joined best,
                   const Join& join) {
   constexpr int kMaxTries = 32;  // joins per layer, bounding the work on a many-lobed part
   int tries = 0;
@@ -97,7 +98,7 @@ Joined with_seams(const Region& fill, const LobeSeams& seams, std::size_t bound,
     kept = cuts;
     return true;
   };
-  const auto more = [&] { return best.strands.size() > bound && tries < kMaxTries; };
+  const auto more = [&] { return over(best.strands) && tries < kMaxTries; };
   const std::size_t k = seams.dead_ends;
   for (std::size_t v = 0; v < 2 && more(); ++v) {  // with each of the two whole-cell slits
     const auto all_but = [&](std::size_t a, std::size_t b) {
@@ -136,17 +137,13 @@ Joined with_seams(const Region& fill, const LobeSeams& seams, std::size_t bound,
 // bead between them. `out`'s pattern sums lose what is left out.
 void drop_stubs(const Region& region, double nozzle_mm, std::vector<slicer::Stroke>& strands,
                 LayerFill& out) {
-  const auto part_of = [&](const slicer::Stroke& s) {
-    for (std::size_t i = 0; i < region.size(); ++i) {
-      if (slicer::contains(Region{region[i]}, s.start_mm)) return static_cast<int>(i);
-    }
-    return -1;
-  };
   std::vector<int> parts;
   std::vector<int> over(region.size(), 0);
   for (std::size_t i = 0; i < region.size(); ++i) over[i] = -1 - static_cast<int>(region[i].holes.size());
   for (const auto& s : strands) {
-    parts.push_back(part_of(s));
+    std::vector<Vec2> points{s.start_mm};
+    for (const auto& seg : s.segments) points.push_back(seg.end_mm);
+    parts.push_back(part_holding(region, points));
     if (parts.back() >= 0) ++over[static_cast<std::size_t>(parts.back())];
   }
   for (;;) {
@@ -206,16 +203,19 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   const Region fill = slicer::offset_region(region, -(perimeters + 0.5) * d);
   Joined best = join(fill, {});
   // More strands than one per region and hole: a scaffold's dead-end lobes get seams.
-  std::size_t bound = 0;
-  for (const auto& part : region) bound += 1 + part.holes.size();
-  if (best.strands.size() > bound && p.lattice.empty()) {
+  // Over the bound in some part (a region's count, as the slice summary takes it: the totals
+  // would hide a part with a strand too many beside one with none).
+  const auto over = [&](const std::vector<slicer::Stroke>& strands) {
+    return strands_over_bound(strands_per_region(region, strands)) > 0;
+  };
+  if (over(best.strands) && p.lattice.empty()) {
     const LobeSeams seams = lobe_seams(fill, best.pieces, {d, p.pitch_mm, min_half});
-    best = with_seams(fill, seams, bound, std::move(best), join);
+    best = with_seams(fill, seams, over, std::move(best), join);
   }
   out.pattern_strands = best.pattern_strands;
   out.pattern_length_mm = best.pattern_length_mm;
   std::vector<slicer::Stroke>& strands = best.strands;
-  if (strands.size() > bound) drop_stubs(region, d, strands, out);
+  if (over(strands)) drop_stubs(region, d, strands, out);
   out.strokes.insert(out.strokes.end(), strands.begin(), strands.end());
   return out;
 }

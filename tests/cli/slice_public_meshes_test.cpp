@@ -4,7 +4,9 @@
 // have no layer with material but no deposit, and miss the strand bound (1 per region + 1 per
 // hole) in no more layers than today: seams down dead-end lobes (patterns/lobe_seams.h) took
 // anchor from 3 to 0, goathead from 4 to 0 and spool from 13 to 3 without perimeters, and
-// leaving out lone stubs in legs too narrow to join them took spool from 13 to 3 with one.
+// leaving out lone stubs in legs too narrow to join them took spool from 13 to 3 with one;
+// judging the bound per part, not on the layer's totals (a part with a strand too many beside a
+// sliver with none), took elephant from 2 to 0 and pinion from 9 to 7 without, 16 to 14 with.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -23,8 +25,9 @@ TEST(SlicePublicMeshes, EachPassesCheckDepositsInEveryLayerAndHoldsTheStrandBoun
     int perimeters;
     int layers_over;  // at most
   };
-  for (const Case& c : {Case{"rotor.off", 1, 5}, Case{"spool.off", 1, 3}, Case{"pinion.off", 1, 16},
-                        Case{"anchor.off", 0, 0}, Case{"goathead.obj", 0, 0}, Case{"spool.off", 0, 3}}) {
+  for (const Case& c : {Case{"rotor.off", 1, 5}, Case{"spool.off", 1, 3}, Case{"pinion.off", 1, 14},
+                        Case{"anchor.off", 0, 0}, Case{"goathead.obj", 0, 0}, Case{"spool.off", 0, 3},
+                        Case{"elephant.off", 0, 0}, Case{"pinion.off", 0, 7}}) {
     const std::string& name = c.name;
     const std::string dir = fresh_dir("public-" + name + "-" + std::to_string(c.perimeters));
     ASSERT_EQ(std::system(("gzip -dc '" + data + name + ".gz' > '" + dir + "/" + name + "'").c_str()), 0);

@@ -9,6 +9,7 @@
 
 #include "jobs/slice_job.h"
 #include "jobs/slice_material_bead.h"
+#include "patterns/region_strands.h"
 #include "tests/support/cli_runner.h"
 #include "tests/support/mesh_shapes.h"
 
@@ -40,10 +41,14 @@ TEST(SliceLayerStats, StrandsAreCountedInTheRegionHoldingThem) {
       line({21, 1}, {29, 1}),                      // part 1
       line({21, 5}, {29, 5}), line({29, 5}, {29, 9}), line({29, 9}, {21, 9}),  // part 1 again
   };
-  const auto counts = strands_per_region(region, strokes);
+  const auto counts = patterns::strands_per_region(region, strokes);
   ASSERT_EQ(counts.size(), 2u);
-  EXPECT_EQ(counts[0], (RegionStrands{2, 1}));
-  EXPECT_EQ(counts[1], (RegionStrands{2, 0}));
+  EXPECT_EQ(counts[0], (patterns::RegionStrands{2, 1}));
+  EXPECT_EQ(counts[1], (patterns::RegionStrands{2, 0}));
+  // Part 0 may have two (it has a hole), part 1 one: one over, though the totals (4 strands,
+  // a bound of 3) would hide it beside an empty third part.
+  EXPECT_EQ(patterns::strands_over_bound(counts), 1);
+  EXPECT_EQ(patterns::strands_over_bound({{2, 1}, {2, 0}, {0, 0}}), 1);
 }
 
 TEST(SliceLayerStats, ALayerWithMaterialAndNoStrokeIsNamed) {

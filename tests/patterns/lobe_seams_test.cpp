@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "patterns/region_fill.h"
+#include "patterns/region_strands.h"
 #include "patterns/registry.h"
 #include "postprocess/inspect/crossings.h"
 
@@ -82,6 +83,19 @@ TEST(LobeSeams, ABodyOnTwoLegsIsOneStrandDownAndBackUpALeg) {
           << "legs " << leg << " mm, the leg at x " << x0;
     }
   }
+}
+
+// The bound is a part's: a sliver too thin for any chord beside the body (a second part, with
+// no strand) must not let the body keep a strand too many, as the layer's totals (2 strands,
+// 2 parts) would.
+TEST(LobeSeams, ABodyBesideASliverStillGetsItsSeam) {
+  slicer::Region region = legged(6.0, false);
+  for (auto& part : slicer::region_from_contours({box(14, 0, 14.3, 8)})) region.push_back(std::move(part));
+  ASSERT_EQ(region.size(), 2u);
+  const LayerFill f = fill_layer(region, scaffold({16, 20}), 0, 0, {16, 20});
+  EXPECT_EQ(f.strokes.size(), 1u);
+  EXPECT_EQ(strands_over_bound(strands_per_region(region, f.strokes)), 0);
+  EXPECT_EQ(crossings(f.strokes), 0u);
 }
 
 TEST(LobeSeams, AnHIsOneStrand) {

@@ -1,0 +1,32 @@
+// Strands per connected part of a layer's region, against the bound a part allows (one, plus
+// one per hole): what the fill aims at (patterns/region_fill.h) and the slice summary counts.
+#pragma once
+
+#include <vector>
+
+#include "slicer/region.h"
+#include "slicer/toolpath.h"
+
+namespace strand::patterns {
+
+struct RegionStrands {
+  int strands = 0;  // extruding runs (perimeters included) whose deposit lies in the region
+  int holes = 0;    // the region's holes
+  bool operator==(const RegionStrands&) const = default;
+};
+
+// The part of `region` holding most of (at most 9) points spread along `points`; -1 when
+// none holds any.
+int part_holding(const slicer::Region& region, const std::vector<slicer::Vec2>& points);
+
+// Per connected part of `region` (in its order): the strands of `strokes` printed there. A
+// strand is a run of strokes each starting where the previous one ended (no travel between
+// them: one strand in the file, as the estimate counts them); it belongs to the part that
+// holds most of its points.
+std::vector<RegionStrands> strands_per_region(const slicer::Region& region,
+                                              const std::vector<slicer::Stroke>& strokes);
+
+// Strands beyond the bound, summed over the parts.
+int strands_over_bound(const std::vector<RegionStrands>& parts);
+
+}  // namespace strand::patterns
