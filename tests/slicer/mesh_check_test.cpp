@@ -57,12 +57,18 @@ TEST(MeshCheck, ThreeTrianglesOnOneEdgeAreNonManifold) {
   EXPECT_GT(check_mesh(m).non_manifold_edges, 0u);
 }
 
-TEST(MeshCheck, OverlappingBoxesSelfIntersect) {
-  Mesh a = box_mesh(Vec3(2, 2, 2));
-  const Mesh b = box_mesh(Vec3(2, 2, 2));
+// Two cubes of side `side_mm`, the second moved by `offset`, as one mesh (each its own vertices).
+Mesh two_cubes(double side_mm, const Vec3& offset) {
+  Mesh a = box_mesh(Vec3(side_mm, side_mm, side_mm));
+  const Mesh b = a;
   const int base = static_cast<int>(a.vertices_mm.size());
-  for (const Vec3& v : b.vertices_mm) a.vertices_mm.push_back(v + Vec3(1, 1, 1));
+  for (const Vec3& v : b.vertices_mm) a.vertices_mm.push_back(v + offset);
   for (const auto& t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  return a;
+}
+
+TEST(MeshCheck, OverlappingBoxesSelfIntersect) {
+  const Mesh a = two_cubes(2, Vec3(1, 1, 1));
   const MeshCheck c = check_mesh(a);
   EXPECT_GT(c.self_intersections, 0u);
   EXPECT_NE(c.problem.find("self-intersecting"), std::string::npos);
@@ -71,20 +77,13 @@ TEST(MeshCheck, OverlappingBoxesSelfIntersect) {
 
 TEST(MeshCheck, BoxesMeetingAtACornerTouchAtASingleVertex) {
   // Every edge is used once each way, but the shared corner has two fans of triangles.
-  Mesh a = box_mesh(Vec3(1, 1, 1));
-  const Mesh b = box_mesh(Vec3(1, 1, 1));
-  const int base = static_cast<int>(a.vertices_mm.size());
-  for (const Vec3& v : b.vertices_mm) a.vertices_mm.push_back(v + Vec3(1, 1, 1));
-  for (const auto& t : b.triangles) a.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-  const MeshCheck c = check_mesh(a);
+  const MeshCheck c = check_mesh(two_cubes(1, Vec3(1, 1, 1)));
   EXPECT_TRUE(c.touching_vertex);
   EXPECT_EQ(c.non_manifold_edges + c.border_edges + c.misoriented_edges, 0u);
   EXPECT_NE(c.problem.find("single vertex"), std::string::npos) << c.problem;
   // Apart, each box is sound.
-  for (auto& v : a.vertices_mm) {
-    if (&v - a.vertices_mm.data() >= base) v += Vec3(0.5, 0, 0);
-  }
-  EXPECT_TRUE(check_mesh(a).ok()) << check_mesh(a).problem;
+  const MeshCheck apart = check_mesh(two_cubes(1, Vec3(1.5, 1, 1)));
+  EXPECT_TRUE(apart.ok()) << apart.problem;
 }
 
 TEST(MeshCheck, InsideOutIsReversedAndReported) {
