@@ -33,19 +33,35 @@ using Soup = std::vector<std::vector<std::size_t>>;
 
 }  // namespace
 
+// Sorted rather than mapped: a tree node per vertex cost more time and memory than the
+// mesh itself on a million triangles.
 Mesh weld_mesh(const Mesh& m) {
-  std::map<std::array<double, 3>, int> index;
-  std::vector<int> remap(m.vertices_mm.size());
-  Mesh out;
-  for (std::size_t i = 0; i < m.vertices_mm.size(); ++i) {
+  const std::size_t n = m.vertices_mm.size();
+  const auto key = [&](std::size_t i) {
     const Vec3& v = m.vertices_mm[i];
-    const auto [it, fresh] = index.emplace(std::array<double, 3>{v.x(), v.y(), v.z()},
-                                           static_cast<int>(out.vertices_mm.size()));
-    if (fresh) {
-      out.vertices_mm.push_back(v);
+    return std::array<double, 3>{v.x(), v.y(), v.z()};
+  };
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const auto ka = key(a), kb = key(b);
+    return ka != kb ? ka < kb : a < b;
+  });
+  std::vector<std::size_t> first(n);  // per vertex, the first vertex at its place
+  for (std::size_t k = 0; k < n; ++k) {
+    const bool same = k > 0 && !(key(order[k - 1]) < key(order[k]));
+    first[order[k]] = same ? first[order[k - 1]] : order[k];
+  }
+  std::vector<int> remap(n);
+  Mesh out;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (first[i] == i) {  // fresh, in the order of the file
+      remap[i] = static_cast<int>(out.vertices_mm.size());
+      out.vertices_mm.push_back(m.vertices_mm[i]);
       if (!m.uv.empty()) out.uv.push_back(m.uv[i]);
+    } else {
+      remap[i] = remap[first[i]];
     }
-    remap[i] = it->second;
   }
   for (const auto& t : m.triangles) {
     const std::array<int, 3> r{remap[t[0]], remap[t[1]], remap[t[2]]};
@@ -60,25 +76,34 @@ std::string edge_text(const Mesh& m, int a, int b) {
   return "from " + point_text(m.vertices_mm[a]) + " to " + point_text(m.vertices_mm[b]);
 }
 
-// Border, non-manifold and misoriented edges from directed-edge counts.
+// Border, non-manifold and misoriented edges from directed-edge counts: each use of an edge as
+// (lower vertex, higher vertex, 0 when run upwards), sorted, so an edge's uses lie together.
 void check_edges(const Mesh& m, MeshCheck& c) {
-  std::map<std::pair<int, int>, std::pair<int, int>> uses;  // undirected -> (a->b, b->a)
+  std::vector<std::array<int, 3>> uses;
+  uses.reserve(3 * m.triangles.size());
   for (const auto& t : m.triangles) {
     for (int k = 0; k < 3; ++k) {
       const int a = t[k], b = t[(k + 1) % 3];
-      auto& u = uses[{std::min(a, b), std::max(a, b)}];
-      (a < b ? u.first : u.second) += 1;
+      uses.push_back({std::min(a, b), std::max(a, b), a < b ? 0 : 1});
     }
   }
+  std::sort(uses.begin(), uses.end());
   std::string border, non_manifold, misoriented;
-  for (const auto& [e, u] : uses) {
-    const int total = u.first + u.second;
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    int up = 0, down = 0;
+    for (; j < uses.size() && uses[j][0] == uses[i][0] && uses[j][1] == uses[i][1]; ++j) {
+      (uses[j][2] == 0 ? up : down) += 1;
+    }
+    const int a = uses[i][0], b = uses[i][1];
+    i = j;
+    const int total = up + down;
     if (total == 1) {
-      if (c.border_edges++ == 0) border = edge_text(m, e.first, e.second);
+      if (c.border_edges++ == 0) border = edge_text(m, a, b);
     } else if (total > 2) {
-      if (c.non_manifold_edges++ == 0) non_manifold = edge_text(m, e.first, e.second);
-    } else if (u.first != 1) {
-      if (c.misoriented_edges++ == 0) misoriented = edge_text(m, e.first, e.second);
+      if (c.non_manifold_edges++ == 0) non_manifold = edge_text(m, a, b);
+    } else if (up != 1) {
+      if (c.misoriented_edges++ == 0) misoriented = edge_text(m, a, b);
     }
   }
   if (c.border_edges > 0) {
