@@ -141,9 +141,7 @@ void drop_stubs(const Region& region, double nozzle_mm, std::vector<slicer::Stro
   std::vector<int> over(region.size(), 0);
   for (std::size_t i = 0; i < region.size(); ++i) over[i] = -1 - static_cast<int>(region[i].holes.size());
   for (const auto& s : strands) {
-    std::vector<Vec2> points{s.start_mm};
-    for (const auto& seg : s.segments) points.push_back(seg.end_mm);
-    parts.push_back(part_holding(region, points));
+    parts.push_back(part_holding(region, s));
     if (parts.back() >= 0) ++over[static_cast<std::size_t>(parts.back())];
   }
   for (;;) {

@@ -33,6 +33,12 @@ int part_holding(const slicer::Region& region, const std::vector<slicer::Vec2>& 
   return best;
 }
 
+int part_holding(const slicer::Region& region, const slicer::Stroke& stroke) {
+  std::vector<slicer::Vec2> points;
+  add_points(stroke, points);
+  return part_holding(region, points);
+}
+
 std::vector<RegionStrands> strands_per_region(const slicer::Region& region,
                                               const std::vector<slicer::Stroke>& strokes) {
   std::vector<RegionStrands> out(region.size());

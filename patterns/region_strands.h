@@ -18,6 +18,8 @@ struct RegionStrands {
 // The part of `region` holding most of (at most 9) points spread along `points`; -1 when
 // none holds any.
 int part_holding(const slicer::Region& region, const std::vector<slicer::Vec2>& points);
+// The same for the points one stroke deposits along (its start and every segment's end).
+int part_holding(const slicer::Region& region, const slicer::Stroke& stroke);
 
 // Per connected part of `region` (in its order): the strands of `strokes` printed there. A
 // strand is a run of strokes each starting where the previous one ended (no travel between
