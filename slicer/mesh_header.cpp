@@ -141,19 +141,11 @@ void vet_ply_header(const std::string& path, std::uintmax_t size_bytes) {
   vet_ply_body(path, size_bytes, r.layout);
 }
 
-namespace {
-
-// A count as the message shows it: 2147483647, not 2.14748e+09.
-std::string token_text(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-// The words of `line` as `>>` splits them (at spaces, tabs and line ends), without an
-// istringstream per line: those cost more than OpenMesh's own reading of the file. Each word
-// is followed in `line` by a space or the end of the string, so strtod reads no further.
-void split_words(const std::string& line, std::vector<std::string_view>& words) {
+// Words as `>>` splits them: at spaces, tabs, line ends, vertical tabs and form feeds
+// (isspace in the C locale), without an istringstream per line, which cost more than
+// OpenMesh's own reading of a file. Each word is followed in `line` by a space, a '#' or the
+// end of the string, so strtod reads no further.
+void split_words(std::string_view line, std::vector<std::string_view>& words) {
   const auto space = [](char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };
   words.clear();
   for (std::size_t i = 0; i < line.size();) {
@@ -165,79 +157,7 @@ void split_words(const std::string& line, std::vector<std::string_view>& words) 
   }
 }
 
-// `line` up to its first '#', a comment.
 void drop_comment(std::string& line) { line.resize(std::min(line.size(), line.find('#'))); }
-
-}  // namespace
-
-void vet_off_file(const std::string& path, std::uintmax_t size_bytes) {
-  std::ifstream in(path, std::ios::binary);
-  const auto fail = [&](const std::string& why) {
-    throw InputError("mesh = " + path + ": OFF " + why);
-  };
-  std::vector<std::string_view> words;
-  std::vector<double> counts;
-  bool keyword = false;
-  long long index = 0, line_no = 0, keyword_line = 0;
-  std::uint64_t vertex_lines = 0, triangles = 0;
-  for (std::string line; std::getline(in, line);) {
-    ++line_no;
-    drop_comment(line);
-    split_words(line, words);
-    const bool body = counts.size() == 3;  // vertex lines, then face lines
-    int on_line = 0;
-    double corners = 0.0;
-    for (const std::string_view token : words) {
-      ++index;
-      ++on_line;
-      if (!keyword) {  // OFF with its optional prefixes (C, N, ST, 4, n)
-        const auto at = token.find("OFF");
-        if (at == std::string::npos || token.size() != at + 3) fail("files start with OFF");
-        keyword = true;
-        keyword_line = line_no;
-        continue;
-      }
-      if (token == "BINARY") fail("binary files are not read (save as ASCII OFF)");
-      // OpenMesh skips the rest of the OFF line and reads the counts after it: counts written
-      // there would leave its own uninitialised (a 2 GB reservation for "OFF 3 0 1").
-      if (line_no == keyword_line) {
-        fail("line 1 holds only OFF: the vertex, face and edge counts go on the next line");
-      }
-      char* end = nullptr;
-      const double v = std::strtod(token.data(), &end);
-      if (end != token.data() + token.size() || !std::isfinite(v)) {
-        fail("token " + std::to_string(index) + " is not a number");
-      }
-      if (counts.size() < 3 && !body) counts.push_back(v);
-      if (on_line == 1) corners = v;
-    }
-    if (!body || on_line == 0 || static_cast<double>(vertex_lines++) < counts[0]) continue;
-    // A face line: "n i1 .. in [colour]". OpenMesh sizes the face from n before reading it.
-    const std::string where = "line " + std::to_string(line_no) + ": ";
-    if (corners < 0 || corners != std::floor(corners) || corners + 1 > on_line) {
-      fail(where + "a face of " + token_text(corners) + " corners lists " +
-           std::to_string(on_line - 1) + " vertex numbers");
-    }
-    triangles += corners >= 3 ? static_cast<std::uint64_t>(corners) - 2 : 0;
-    if (triangles > kMaxMeshTriangles) {
-      fail(where + "the faces make more than " + std::to_string(kMaxMeshTriangles) +
-           " triangles (n - 2 for a face of n corners); at most " +
-           std::to_string(kMaxMeshTriangles) + " are accepted");
-    }
-  }
-  if (counts.size() < 3) fail("files give vertex, face and edge counts after OFF");
-  for (int k = 0; k < 2; ++k) {
-    if (counts[k] < 0 || counts[k] != std::floor(counts[k]) ||
-        counts[k] > static_cast<double>(size_bytes)) {
-      fail(std::string(k == 0 ? "vertex" : "face") + " count must be a whole number 0 .. " +
-           std::to_string(size_bytes) + " (the file's bytes)");
-    }
-  }
-  if (counts[0] > static_cast<double>(kMaxMeshVertices)) {
-    fail("vertex count " + token_text(counts[0]) + ": at most " +
-         std::to_string(kMaxMeshVertices) + " vertices are accepted");
-  }
-}
 
 namespace {
 

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace strand::slicer {
 
@@ -20,13 +22,16 @@ inline constexpr std::size_t kMaxPlyHeaderBytes = 64 * 1024;
 // kMaxMeshVertices / kMaxMeshTriangles before OpenMesh allocates for it.
 void vet_ply_header(const std::string& path, std::uintmax_t size_bytes);
 
-// OpenMesh's OFF reader loops for as long as its counts say when a number does not parse (a
-// garbled count line took minutes: mesh_fuzz). Throws InputError "mesh = PATH: OFF ..." unless
-// the file is ASCII OFF whose every token outside `#` comments is a number, with vertex and
-// face counts the file's `size_bytes` can hold (and at most kMaxMeshVertices vertices), each
-// face line listing the corners its count says (OpenMesh sized the face from the count: 2^31
-// took 8 GB), the faces making at most kMaxMeshTriangles triangles.
-void vet_off_file(const std::string& path, std::uintmax_t size_bytes);
+// OpenMesh's ASCII OFF reader takes every number with `>>`: where one does not parse, every
+// later read keeps its variable as it was, and the face loop reran a stale corner count for
+// each face left (2^31 corners took 8 GB: mesh_fuzz). Throws InputError "mesh = PATH: OFF ..."
+// unless a walk over the words in OpenMesh's own order (mesh_header_off.cpp) reads a header
+// line of [ST][C][N]OFF alone, three counts, every vertex's coordinates (decimal, finite as a
+// float) and every face's corner count and vertex numbers (whole, each naming a vertex of the
+// file) before the file ends, with no `#` comment where a number is read, no words after a
+// face that OpenMesh would take for the next one, at most kMaxMeshVertices vertices and faces
+// making at most kMaxMeshTriangles triangles.
+void vet_off_file(const std::string& path);
 
 // Readers drop or merge vertices with NaN or infinite coordinates and then report "no
 // triangles" or "open mesh". Throws InputError "mesh = PATH: ... not finite (NaN or
@@ -42,5 +47,11 @@ void vet_finite_vertices(const std::string& path, const std::string& ext,
 // has at least 3 corners, each starting with a non-zero vertex index, and the faces make at
 // most kMaxMeshTriangles triangles (n - 2 for a face of n corners).
 void vet_obj_faces(const std::string& path);
+
+// The words of `line` as `>>` splits them (isspace in the C locale): views into `line`.
+void split_words(std::string_view line, std::vector<std::string_view>& words);
+
+// Cuts `line` at its first '#', a comment's start.
+void drop_comment(std::string& line);
 
 }  // namespace strand::slicer

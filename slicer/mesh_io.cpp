@@ -120,7 +120,7 @@ Mesh read_mesh_file(const std::string& path) {
   } else if (ext == ".stl" || ext == ".obj" || ext == ".ply" || ext == ".off") {
     if (ext == ".ply") vet_ply_header(path, size);
     vet_finite_vertices(path, ext, size);  // before the OFF check: NaN is named as such
-    if (ext == ".off") vet_off_file(path, size);
+    if (ext == ".off") vet_off_file(path);
     if (ext == ".obj") vet_obj_faces(path);
     m = read_openmesh(path, ext);
   } else {
