@@ -115,7 +115,8 @@ sanitize-build: deps web-deps
 	  -DSTRAND_SANITIZE=ON -DSTRAND_FUZZ=ON >/dev/null
 	@cmake --build $(SAN_DIR) -j$$(nproc)
 
-# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (any report fails it), one
+# The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (any report fails it; the
+# code under test is instrumented, the test files are not: tests/CMakeLists.txt), one
 # process per core (tests/sanitize_run.sh), but for the cases tests/sanitize_skip.txt lists with
 # the reason: end-to-end and property cases, 8-30x slower here, whose code lighter cases already
 # run under the sanitizers.
