@@ -1,4 +1,5 @@
 // OFF files walked word by word in the order OpenMesh's ASCII reader takes them, before it does.
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -122,7 +123,7 @@ class OffWalk {
   }
 
   // A coordinate as `>>` into a float reads it whole: a sign, decimal digits with at most one
-  // point, an optional exponent; finite as a float (a larger one stops the stream).
+  // point, an optional exponent; within a float's range (a larger one stops the stream).
   void coordinate(const std::string& what) {
     const std::string_view w = word(what);
     std::size_t i = w.size() > 0 && (w[0] == '+' || w[0] == '-') ? 1 : 0;
@@ -142,7 +143,9 @@ class OffWalk {
       if (i < w.size() && (w[i] == '+' || w[i] == '-')) ++i;
       ok = run() > 0;
     }
-    if (!ok || i != w.size() || !std::isfinite(std::strtof(std::string(w).c_str(), nullptr))) {
+    errno = 0;  // ERANGE: past a float, or below its smallest normal (so as not to rely on >>)
+    const float v = ok && i == w.size() ? std::strtof(std::string(w).c_str(), nullptr) : 0.0f;
+    if (!ok || i != w.size() || errno == ERANGE || !std::isfinite(v)) {
       fail_here(what + " '" + shown(w) + "' is not a decimal number within a float's range");
     }
   }

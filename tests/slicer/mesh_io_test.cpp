@@ -334,6 +334,7 @@ TEST(MeshIo, OffFilesAreWalkedInOpenMeshsOrderBeforeItReadsThem) {
        "OFF line 3: a coordinate of vertex 0 '0x10' is not a decimal number within a float's "
        "range");
   says(refused("far.off", "OFF\n3 1 0\n1e39 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "'1e39' is not");
+  says(refused("tiny.off", "OFF\n3 1 0\n1e-60 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "'1e-60' is not");
   says(refused("index.off", "OFF\n3 1 0\n" + tri + "3 0 1 3\n"),
        "OFF line 6: face 0's vertex number must be a whole number 0 .. 2 (it is '3')");
   says(refused("fraction.off", "OFF\n3 1 0\n" + tri + "3 0 1.5 2\n"), "(it is '1.5')");
