@@ -57,7 +57,7 @@ Mesh from_surface_mesh(const SurfaceMesh& sm) {
 }
 
 // Self-intersections and orientation of a mesh whose edges are sound.
-void check_geometry(const Mesh& m, MeshCheck& c) {
+void check_geometry(const Mesh& m, MeshCheck& c, Crossings crossings) {
   std::vector<Point> points;
   Soup polygons;
   to_soup(m, points, polygons);
@@ -68,11 +68,21 @@ void check_geometry(const Mesh& m, MeshCheck& c) {
   }
   SurfaceMesh sm;
   PMP::polygon_soup_to_polygon_mesh(points, polygons, sm);
-  // On every core (oneTBB); the pairs come in any order, so the example named is the least face.
+  // On every core (oneTBB). Up to the first pair: it stops there. Counted: the pairs come in
+  // any order, so the example named is the least face.
+  if (crossings == Crossings::First &&
+      PMP::does_self_intersect<CGAL::Parallel_if_available_tag>(sm)) {
+    c.self_intersecting = true;
+    c.problem = "self-intersecting: triangles cut each other";
+    return;
+  }
   std::vector<std::pair<SurfaceMesh::Face_index, SurfaceMesh::Face_index>> pairs;
-  PMP::self_intersections<CGAL::Parallel_if_available_tag>(sm, std::back_inserter(pairs));
+  if (crossings == Crossings::Count) {
+    PMP::self_intersections<CGAL::Parallel_if_available_tag>(sm, std::back_inserter(pairs));
+  }
   if (!pairs.empty()) {
     c.self_intersections = pairs.size();
+    c.self_intersecting = true;
     SurfaceMesh::Face_index least = pairs.front().first;
     for (const auto& [f, g] : pairs) least = std::min({least, f, g});
     const auto h = sm.halfedge(least);
@@ -128,11 +138,11 @@ Mesh repaired(const Mesh& m, std::vector<std::string>& changes) {
 
 }  // namespace
 
-MeshCheck check_mesh(const Mesh& input) {
+MeshCheck check_mesh(const Mesh& input, Crossings crossings) {
   const Mesh m = weld_mesh(input);
   MeshCheck c;
   check_edges(m, c);
-  if (c.ok()) check_geometry(m, c);
+  if (c.ok()) check_geometry(m, c, crossings);
   return c;
 }
 
@@ -202,6 +212,10 @@ std::vector<std::string> defect_notes(const MeshCheck& c) {
         "mesh: " +
         count_text(c.self_intersections, "self-intersecting pair", "self-intersecting pairs") +
         " of triangles resolved by contour union");
+  } else if (c.self_intersecting) {
+    out.push_back(
+        "mesh: self-intersecting triangles resolved by contour union (strand mesh "
+        "counts the pairs)");
   }
   if (c.non_manifold_edges > 0) {
     out.push_back("mesh: " + count_text(c.non_manifold_edges, "edge", "edges") +
@@ -316,11 +330,18 @@ PreparedMesh prepare_mesh(const Mesh& input, const PrepareOptions& options,
     throw InputError(what + ": flat mesh (size " + point_text(size) + " mm): nothing to fill");
   }
   const std::size_t merged = input.vertices_mm.size() - out.mesh.vertices_mm.size();
-  out.before = check_mesh(out.mesh);
+  // Slicing needs to know whether triangles cross, not how many pairs do; a refusal counts
+  // them and names where.
+  const auto counted = [](const Mesh& m, const MeshCheck& c) {
+    return c.self_intersecting && c.self_intersections == 0 ? check_mesh(m) : c;
+  };
+  out.before = check_mesh(out.mesh, Crossings::First);
   MeshCheck sliced = out.before;
   if (!out.before.ok()) {
-    if (options.strict && !options.repair)
-      throw InputError(what + ": " + out.before.problem + " (run with --repair to fix it)");
+    if (options.strict && !options.repair) {
+      throw InputError(what + ": " + counted(out.mesh, out.before).problem +
+                       " (run with --repair to fix it)");
+    }
     if (options.repair) {
       std::vector<std::string> changes;
       if (merged > 0) changes.push_back("merged coincident vertices: " + std::to_string(merged));
@@ -335,10 +356,10 @@ PreparedMesh prepare_mesh(const Mesh& input, const PrepareOptions& options,
         out.changes.insert(out.changes.end(), changes.begin(), changes.end());
         out.mesh = std::move(fixed);
       }
-      sliced = check_mesh(out.mesh);
+      sliced = check_mesh(out.mesh, Crossings::First);
       if (options.strict && !sliced.ok()) {
-        const bool cut = sliced.self_intersections > 0;
-        throw InputError(what + ": " + sliced.problem +
+        const bool cut = sliced.self_intersecting;
+        throw InputError(what + ": " + counted(out.mesh, sliced).problem +
                          (cut ? " (--repair does not cut self-intersections: export the part as "
                                 "one closed surface)"
                               : " (still after --repair)"));

@@ -20,7 +20,8 @@ struct MeshCheck {
   std::size_t border_edges = 0;        // used by one triangle: the mesh is open
   std::size_t non_manifold_edges = 0;  // shared by three or more triangles
   std::size_t misoriented_edges = 0;   // two triangles run the edge the same way
-  std::size_t self_intersections = 0;  // pairs of triangles that cut each other
+  std::size_t self_intersections = 0;  // pairs of triangles that cut each other, when counted
+  bool self_intersecting = false;      // some pair cuts (counted or not)
   bool inside_out = false;             // closed and consistent, but normals point inward
   bool touching_vertex = false;        // surfaces meet at a single vertex (non-manifold)
   std::string problem;                 // first blocking problem with where, empty = none
@@ -31,9 +32,14 @@ struct MeshCheck {
 // drops triangles that collapse; UVs follow their vertices.
 Mesh weld_mesh(const Mesh& m);
 
+// How far check_mesh searches for self-intersections: every pair, counted (what `strand mesh`
+// prints), or up to the first (what slicing needs: the soup slicer resolves them all alike, and
+// on a part whose shells overlap the count costs most of the time it takes to read it).
+enum class Crossings { Count, First };
+
 // Merges coincident vertices (exact), then checks. Self-intersections are searched only
 // when the topology is sound.
-MeshCheck check_mesh(const Mesh& m);
+MeshCheck check_mesh(const Mesh& m, Crossings crossings = Crossings::Count);
 
 // Border, non-manifold and misoriented edges of the mesh as indexed (no welding): what
 // `--repair` must never increase.

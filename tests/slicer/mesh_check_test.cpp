@@ -154,14 +154,30 @@ TEST(MeshCheck, DefectsAreReportedNotFatalUnlessStrict) {
   const Mesh overlapping = two_boxes(Vec3(0.5, 0.5, 0.5));
   const PreparedMesh p = prepare_mesh(overlapping, PrepareOptions{}, "mesh = part.stl");
   ASSERT_EQ(p.defects.size(), 1u) << ::testing::PrintToString(p.defects);
-  EXPECT_NE(p.defects[0].find("self-intersecting pairs of triangles resolved by contour union"),
-            std::string::npos)
-      << p.defects[0];
+  // Slicing looks for the first crossing only; the pairs are counted by `strand mesh`.
+  EXPECT_EQ(p.defects[0],
+            "mesh: self-intersecting triangles resolved by contour union (strand mesh "
+            "counts the pairs)");
+  EXPECT_TRUE(p.before.self_intersecting);
+  EXPECT_EQ(p.before.self_intersections, 0u) << "not counted";
+  const MeshCheck counted = check_mesh(overlapping);
+  EXPECT_TRUE(counted.self_intersecting);
+  EXPECT_GT(counted.self_intersections, 0u);
+  const MeshCheck first = check_mesh(overlapping, Crossings::First);
+  EXPECT_TRUE(first.self_intersecting);
+  EXPECT_EQ(first.self_intersections, 0u);
+  EXPECT_FALSE(check_mesh(box_mesh(Vec3(1, 2, 3)), Crossings::First).self_intersecting);
   try {
     prepare_mesh(overlapping, PrepareOptions{false, true}, "mesh = part.stl");
     ADD_FAILURE() << "strict refuses";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("mesh = part.stl: self-intersecting"), std::string::npos);
+    // A refusal counts the pairs and names where.
+    EXPECT_EQ(std::string(e.what()).rfind("mesh = part.stl: self-intersecting: " +
+                                              std::to_string(counted.self_intersections) +
+                                              " pair(s) of triangles cut each other, e.g. near (",
+                                          0),
+              0u)
+        << e.what();
   }
 }
 
