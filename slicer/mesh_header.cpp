@@ -146,20 +146,20 @@ void vet_ply_header(const std::string& path, std::uintmax_t size_bytes) {
 // OpenMesh's own reading of a file. Each word is followed in `line` by a space, a '#' or the
 // end of the string, so strtod reads no further.
 void split_words(std::string_view line, std::vector<std::string_view>& words) {
-  const auto space = [](char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };
   words.clear();
   for (std::size_t i = 0; i < line.size();) {
-    while (i < line.size() && space(line[i])) ++i;
+    while (i < line.size() && is_word_space(line[i])) ++i;
     std::size_t j = i;
-    while (j < line.size() && !space(line[j])) ++j;
+    while (j < line.size() && !is_word_space(line[j])) ++j;
     if (j > i) words.emplace_back(line.data() + i, j - i);
     i = j;
   }
 }
 
-void drop_comment(std::string& line) { line.resize(std::min(line.size(), line.find('#'))); }
-
 namespace {
+
+// Cuts `line` at its first '#', a comment's start.
+void drop_comment(std::string& line) { line.resize(std::min(line.size(), line.find('#'))); }
 
 // `t` is a word of split_words: strtod stops at its end.
 bool non_finite_token(std::string_view t) {

@@ -48,10 +48,10 @@ void vet_finite_vertices(const std::string& path, const std::string& ext,
 // most kMaxMeshTriangles triangles (n - 2 for a face of n corners).
 void vet_obj_faces(const std::string& path);
 
-// The words of `line` as `>>` splits them (isspace in the C locale): views into `line`.
-void split_words(std::string_view line, std::vector<std::string_view>& words);
+// A space to `>>` (isspace in the C locale): space, tab, line end, vertical tab, form feed.
+inline bool is_word_space(char c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
 
-// Cuts `line` at its first '#', a comment's start.
-void drop_comment(std::string& line);
+// The words of `line` as `>>` splits them (at is_word_space): views into `line`.
+void split_words(std::string_view line, std::vector<std::string_view>& words);
 
 }  // namespace strand::slicer

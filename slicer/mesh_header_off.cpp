@@ -85,10 +85,9 @@ class OffWalk {
                                  : static_cast<std::size_t>(words_[at_ - 1].data() +
                                                             words_[at_ - 1].size() - line_.data());
     const std::string_view rest = std::string_view(line_).substr(from);
-    const auto space = [](char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };
     std::size_t lead = 0, trail = 0;
-    while (lead < rest.size() && space(rest[lead])) ++lead;
-    while (trail < rest.size() - lead && space(rest[rest.size() - 1 - trail])) ++trail;
+    while (lead < rest.size() && is_word_space(rest[lead])) ++lead;
+    while (trail < rest.size() - lead && is_word_space(rest[rest.size() - 1 - trail])) ++trail;
     trim_copies_ += static_cast<std::uint64_t>(lead + trail) * rest.size();
     if (trim_copies_ > kMaxTrimCopies) {
       fail_here(
