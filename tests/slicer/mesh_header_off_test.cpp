@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "slicer/file_io.h"
 #include "slicer/input_error.h"
@@ -19,65 +20,66 @@ namespace {
 TEST(MeshHeaderOff, FilesAreWalkedInOpenMeshsOrderBeforeItReadsThem) {
   const auto dir = testing::fresh_dir("mesh-off");
   const std::string tri = "0 0 0\n1 0 0\n0 1 0\n";
-  const auto refused = [&](const std::string& name, const std::string& text) {
-    write_file_atomic(dir + "/" + name, text);
+  struct Refused {
+    std::string name, text, message;  // the file, and a part of the one-line error it gets
+  };
+  const std::vector<Refused> cases = {
+      {"garbled.off", "OFF\n400=aM--M--M je 43\n0 0 0\n",
+       "OFF line 2: the vertex count must be a whole number 0 .. 12000000 (it is "
+       "'400=aM--M--M')"},
+      {"huge.off", "OFF\n9e9 1 0\n0 0 0\n", "the vertex count must be a whole number"},
+      {"binary.off", "OFF BINARY\n", "binary files are not read"},
+      {"dimension.off", "4OFF\n3 1 0\n" + tri + "3 0 1 2\n",
+       "header '4OFF': OpenMesh reads OFF, COFF, NOFF, STOFF"},
+      // OpenMesh skips the rest of the OFF line: counts there were never read (mesh_fuzz, CI:
+      // a 2 GB reservation for "OFF 3 0 1").
+      {"inline.off", "OFF 3 0 1",
+       "OFF line 1 holds only OFF: the vertex, face and edge counts go on the next line"},
+      {"inline-body.off", "OFF 3 1 0\n" + tri + "3 0 1 2\n",
+       "OFF line 1 holds only OFF: the vertex, face and edge counts go on the next line"},
+      // The CI case: a vertical tab is a space to `>>`, so the words after the counts on line
+      // 2 are vertex 0, line 5 a face of 2^31 - 1 corners where a line count saw a third vertex.
+      {"vtab.off", "OFF\n3 1 0\v0 0 0\n1 0 0\n0 1 0\n2147483647 0 1 2\n",
+       "OFF line 5: face 0's corner count must be a whole number 0 .. 4000002 (it is "
+       "'2147483647')"},
+      // OpenMesh has no comments: one where it reads a number stops its stream.
+      {"comment.off", "OFF\n# made by hand\n3 1 0\n" + tri + "3 0 1 2\n",
+       "OFF line 2: a '#' comment where OpenMesh reads the vertex count (its OFF reader has no "
+       "comments: remove it)"},
+      // Numbers `>>` would stop at: hexadecimal, past a float, a signed or fractional index.
+      {"hex.off", "OFF\n3 1 0\n0x10 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+       "OFF line 3: a coordinate of vertex 0 '0x10' is not a decimal number within a float's "
+       "range"},
+      {"far.off", "OFF\n3 1 0\n1e39 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "'1e39' is not"},
+      {"tiny.off", "OFF\n3 1 0\n1e-60 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "'1e-60' is not"},
+      {"index.off", "OFF\n3 1 0\n" + tri + "3 0 1 3\n",
+       "OFF line 6: face 0's vertex number must be a whole number 0 .. 2 (it is '3')"},
+      {"fraction.off", "OFF\n3 1 0\n" + tri + "3 0 1.5 2\n", "(it is '1.5')"},
+      {"short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n", "the file ends before a coordinate of vertex 2"},
+      // A colour after a face that is not the last: OpenMesh would read it as the next face.
+      {"colour.off", "OFF\n3 2 0\n" + tri + "3 0 1 2 255 0 0\n3 0 2 1 255 0 0\n",
+       "OFF line 6: face 0 has 3 words after its 3 vertex numbers (a colour?): OpenMesh would "
+       "read them as the next face (face colours need a COFF header)"},
+      // The rest of a vertex line is trimmed one character at a time, each a copy of the rest:
+      // 40,000 spaces cost 1.6 GB of copies; under COFF, more than 6 items are printed as an
+      // error.
+      {"padded.off",
+       "OFF\n3 1 0\n0 0 0" + std::string(40000, ' ') + "x\n1 0 0\n0 1 0\n" + "3 0 1 2\n",
+       "OFF line 3: too many spaces round the words after vertices and faces"},
+      {"colours.off", "COFF\n3 1 0\n0 0 0 1 2 3 4 5 6 7\n1 0 0\n0 1 0\n3 0 1 2\n",
+       "OFF line 3: a colour of 7 items after the numbers"},
+  };
+  for (const Refused& c : cases) {
+    write_file_atomic(dir + "/" + c.name, c.text);
     std::string e = "(read)";
     try {
-      read_mesh_file(dir + "/" + name);
+      read_mesh_file(dir + "/" + c.name);
     } catch (const InputError& x) {
       e = x.what();
     }
-    EXPECT_EQ(e.find('\n'), std::string::npos) << name;
-    return e;
-  };
-  const auto says = [](const std::string& e, const std::string& part) {
-    EXPECT_NE(e.find(part), std::string::npos) << e;
-  };
-  says(refused("garbled.off", "OFF\n400=aM--M--M je 43\n0 0 0\n"),
-       "OFF line 2: the vertex count must be a whole number 0 .. 12000000 (it is "
-       "'400=aM--M--M')");
-  says(refused("huge.off", "OFF\n9e9 1 0\n0 0 0\n"), "the vertex count must be a whole number");
-  says(refused("binary.off", "OFF BINARY\n"), "binary files are not read");
-  says(refused("dimension.off", "4OFF\n3 1 0\n" + tri + "3 0 1 2\n"),
-       "header '4OFF': OpenMesh reads OFF, COFF, NOFF, STOFF");
-  // OpenMesh skips the rest of the OFF line: counts there were never read (mesh_fuzz, CI: a
-  // 2 GB reservation for "OFF 3 0 1").
-  for (const char* name : {"inline.off", "inline-body.off"}) {
-    says(refused(name, std::string(name) == "inline.off" ? "OFF 3 0 1"
-                                                         : "OFF 3 1 0\n" + tri + "3 0 1 2\n"),
-         "OFF line 1 holds only OFF: the vertex, face and edge counts go on the next line");
+    EXPECT_EQ(e.find('\n'), std::string::npos) << c.name;
+    EXPECT_NE(e.find(c.message), std::string::npos) << c.name << ": " << e;
   }
-  // The CI case: a vertical tab is a space to `>>`, so the words after the counts on line 2
-  // are vertex 0, line 5 a face of 2^31 - 1 corners where a line count saw a third vertex.
-  says(refused("vtab.off", "OFF\n3 1 0\v0 0 0\n1 0 0\n0 1 0\n2147483647 0 1 2\n"),
-       "OFF line 5: face 0's corner count must be a whole number 0 .. 4000002 (it is "
-       "'2147483647')");
-  // OpenMesh has no comments: one where it reads a number stops its stream.
-  says(refused("comment.off", "OFF\n# made by hand\n3 1 0\n" + tri + "3 0 1 2\n"),
-       "OFF line 2: a '#' comment where OpenMesh reads the vertex count (its OFF reader has no "
-       "comments: remove it)");
-  // Numbers `>>` would stop at: hexadecimal, past a float, a signed or fractional index.
-  says(refused("hex.off", "OFF\n3 1 0\n0x10 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
-       "OFF line 3: a coordinate of vertex 0 '0x10' is not a decimal number within a float's "
-       "range");
-  says(refused("far.off", "OFF\n3 1 0\n1e39 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "'1e39' is not");
-  says(refused("tiny.off", "OFF\n3 1 0\n1e-60 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"), "'1e-60' is not");
-  says(refused("index.off", "OFF\n3 1 0\n" + tri + "3 0 1 3\n"),
-       "OFF line 6: face 0's vertex number must be a whole number 0 .. 2 (it is '3')");
-  says(refused("fraction.off", "OFF\n3 1 0\n" + tri + "3 0 1.5 2\n"), "(it is '1.5')");
-  says(refused("short.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n"),
-       "the file ends before a coordinate of vertex 2");
-  // A colour after a face that is not the last: OpenMesh would read it as the next face.
-  says(refused("colour.off", "OFF\n3 2 0\n" + tri + "3 0 1 2 255 0 0\n3 0 2 1 255 0 0\n"),
-       "OFF line 6: face 0 has 3 words after its 3 vertex numbers (a colour?): OpenMesh would "
-       "read them as the next face (face colours need a COFF header)");
-  // The rest of a vertex line is trimmed one character at a time, each a copy of the rest:
-  // 40,000 spaces cost 1.6 GB of copies; under COFF, more than 6 items are printed as an error.
-  says(refused("padded.off",
-               "OFF\n3 1 0\n0 0 0" + std::string(40000, ' ') + "x\n1 0 0\n0 1 0\n" + "3 0 1 2\n"),
-       "OFF line 3: too many spaces round the words after vertices and faces");
-  says(refused("colours.off", "COFF\n3 1 0\n0 0 0 1 2 3 4 5 6 7\n1 0 0\n0 1 0\n3 0 1 2\n"),
-       "OFF line 3: a colour of 7 items after the numbers");
   // What OpenMesh reads well is read: counts and coordinates across lines, a comment after a
   // vertex (the rest of its line is skipped), face colours under COFF, a colour after the
   // last face, NOFF's normals.
