@@ -138,12 +138,20 @@ Mesh repaired(const Mesh& m, std::vector<std::string>& changes) {
 
 }  // namespace
 
-MeshCheck check_mesh(const Mesh& input, Crossings crossings) {
-  const Mesh m = weld_mesh(input);
+namespace {
+
+// check_mesh of a mesh welded already (weld_mesh changes nothing the second time).
+MeshCheck check_welded(const Mesh& m, Crossings crossings) {
   MeshCheck c;
   check_edges(m, c);
   if (c.ok()) check_geometry(m, c, crossings);
   return c;
+}
+
+}  // namespace
+
+MeshCheck check_mesh(const Mesh& input, Crossings crossings) {
+  return check_welded(weld_mesh(input), crossings);
 }
 
 MeshCheck check_edges_as_indexed(const Mesh& m) {
@@ -335,7 +343,7 @@ PreparedMesh prepare_mesh(const Mesh& input, const PrepareOptions& options,
   const auto counted = [](const Mesh& m, const MeshCheck& c) {
     return c.self_intersecting && c.self_intersections == 0 ? check_mesh(m) : c;
   };
-  out.before = check_mesh(out.mesh, Crossings::First);
+  out.before = check_welded(out.mesh, Crossings::First);
   MeshCheck sliced = out.before;
   if (!out.before.ok()) {
     if (options.strict && !options.repair) {
