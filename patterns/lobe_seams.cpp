@@ -18,7 +18,9 @@ struct Chord {
   std::vector<std::size_t> up, down;  // overlapping chords in rows row - 1 and row + 1
 };
 
-bool overlap(const Chord& p, const Chord& q) { return std::min(p.b, q.b) - std::max(p.a, q.a) > 0.0; }
+bool overlap(const Chord& p, const Chord& q) {
+  return std::min(p.b, q.b) - std::max(p.a, q.a) > 0.0;
+}
 
 // A chain continues from chord i to j: i's only neighbour below is j and j's only one above is i.
 bool continues(const std::vector<Chord>& c, std::size_t i) {
@@ -30,8 +32,9 @@ bool continues(const std::vector<Chord>& c, std::size_t i) {
 LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& pieces,
                      const SeamOptions& o) {
   LobeSeams out;
-  const bool lines = std::all_of(pieces.begin(), pieces.end(),
-                                 [](const FillPiece& piece) { return piece.line.points.size() >= 2; });
+  const bool lines = std::all_of(pieces.begin(), pieces.end(), [](const FillPiece& piece) {
+    return piece.line.points.size() >= 2;
+  });
   if (pieces.empty() || !lines || o.pitch_mm <= 0.0 || o.nozzle_mm <= 0.0) return out;
   // The lines' direction u (all pieces parallel and straight) and the across direction n.
   Vec2 u = pieces.front().line.points.back() - pieces.front().line.points.front();
@@ -90,19 +93,40 @@ LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& p
   const slicer::Region inside_tip = slicer::offset_region(fill, -0.1 * o.nozzle_mm);
   // The slit through chords cell[i0..i1], from half a row before the first to half a row
   // after the last, `width` wide, kept inside `within`.
-  const auto slit = [&](const std::vector<std::size_t>& cell, std::size_t i0, std::size_t i1, double width,
-                        const slicer::Region& within) {
-    const double dir = i1 > i0 ? (chords[cell[i1]].t > chords[cell[i0]].t ? 1.0 : -1.0)
-                               : (cell.size() > 1 && chords[cell[1]].t < chords[cell[0]].t ? -1.0 : 1.0);
+  const auto slit = [&](const std::vector<std::size_t>& cell, std::size_t i0, std::size_t i1,
+                        double width, const slicer::Region& within) {
+    const double dir =
+        i1 > i0 ? (chords[cell[i1]].t > chords[cell[i0]].t ? 1.0 : -1.0)
+                : (cell.size() > 1 && chords[cell[1]].t < chords[cell[0]].t ? -1.0 : 1.0);
     std::vector<Vec2> mid;  // (along, across) of the slit's centre line
-    const auto centre = [&](std::size_t k) { return 0.5 * (chords[cell[k]].a + chords[cell[k]].b); };
+    const auto centre = [&](std::size_t k) {
+      return 0.5 * (chords[cell[k]].a + chords[cell[k]].b);
+    };
     mid.emplace_back(centre(i0), chords[cell[i0]].t - dir * 0.5 * o.pitch_mm);
     for (std::size_t k = i0; k <= i1; ++k) mid.emplace_back(centre(k), chords[cell[k]].t);
     mid.emplace_back(centre(i1), chords[cell[i1]].t + dir * 0.5 * o.pitch_mm);
     slicer::Ring ring;
     for (const Vec2& m : mid) ring.push_back((m.x() - width / 2) * u + m.y() * n);
-    for (auto m = mid.rbegin(); m != mid.rend(); ++m) ring.push_back((m->x() + width / 2) * u + m->y() * n);
+    for (auto m = mid.rbegin(); m != mid.rend(); ++m)
+      ring.push_back((m->x() + width / 2) * u + m->y() * n);
     return slicer::region_intersection(slicer::region_from_contours({ring}), within);
+  };
+  // Where a cell's chords are left out: a strip a half pitch wide along each of them.
+  const auto drop = [&](const std::vector<std::size_t>& cell) {
+    std::vector<slicer::Ring> strips;
+    for (const std::size_t i : cell) {
+      const Chord& c = chords[i];
+      const double w = 0.25 * o.pitch_mm;
+      strips.push_back({c.a * u + (c.t - w) * n, c.b * u + (c.t - w) * n, c.b * u + (c.t + w) * n,
+                        c.a * u + (c.t + w) * n});
+    }
+    return CellCut{slicer::region_from_oriented_loops(strips), true};
+  };
+  // A cell whose chords may be left out: none longer than a pitch, so the beads along its
+  // two sides leave no wider a gap than the pattern's own.
+  const auto narrow = [&](const std::vector<std::size_t>& cell) {
+    return std::all_of(cell.begin(), cell.end(),
+                       [&](std::size_t i) { return chords[i].b - chords[i].a <= o.pitch_mm; });
   };
   for (auto cell_it = cells.begin(); cell_it != cells.end(); ++cell_it) {
     const auto& cell = *cell_it;
@@ -114,16 +138,22 @@ LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& p
       if (j - i > best_len) best0 = i, best_len = j - i;
       i = j + 1;
     }
-    if (best_len == 0) continue;
+    if (best_len == 0) {  // too narrow to halve: the cell's chords are left out instead
+      if (!narrow(cell)) continue;
+      out.cells.push_back({drop(cell), drop(cell)});
+      if (cell_it < first_inner) out.dead_ends = out.cells.size();
+      continue;
+    }
     const std::size_t i0 = best0, i1 = best0 + best_len - 1;
     double shortest = chords[cell[i0]].b - chords[cell[i0]].a;
-    for (std::size_t k = i0; k <= i1; ++k) shortest = std::min(shortest, chords[cell[k]].b - chords[cell[k]].a);
+    for (std::size_t k = i0; k <= i1; ++k)
+      shortest = std::min(shortest, chords[cell[k]].b - chords[cell[k]].a);
     const double width = std::clamp(shortest - 2.0 * o.min_half_mm, o.nozzle_mm,
                                     std::max(o.nozzle_mm, o.pitch_mm - o.nozzle_mm));
-    std::vector<slicer::Region> variants;
+    std::vector<CellCut> variants;
     const auto add = [&](std::size_t a, std::size_t b, const slicer::Region& within) {
       slicer::Region r = slit(cell, a, b, width, within);
-      if (!r.empty()) variants.push_back(std::move(r));
+      if (!r.empty()) variants.push_back({std::move(r), false});
     };
     // Every chord (a half shorter than min_half is left out; the lobe is still entered and
     // left beside its first chord, whatever the parity), close to the tip or not; then the
@@ -138,6 +168,7 @@ LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& p
       add(i0, i1 - 1, inside);
     }
     if (i1 > i0 + 1) add(i0 + 1, i1 - 1, inside);
+    if (narrow(cell)) variants.push_back(drop(cell));
     out.cells.push_back(std::move(variants));
     if (cell_it < first_inner) out.dead_ends = out.cells.size();
   }

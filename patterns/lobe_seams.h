@@ -14,14 +14,22 @@
 namespace strand::patterns {
 
 struct SeamOptions {
-  double nozzle_mm = 0.0;     // bead width: the narrowest slit
-  double pitch_mm = 0.0;      // line spacing: rows are this far apart
-  double min_half_mm = 0.0;   // a cut chord's halves are kept at least this long
+  double nozzle_mm = 0.0;    // bead width: the narrowest slit
+  double pitch_mm = 0.0;     // line spacing: rows are this far apart
+  double min_half_mm = 0.0;  // a cut chord's halves are kept at least this long
+};
+
+// One way to let a serpentine out of a cell again: a slit cut out of the fill, or (drop)
+// where the cell's chords are left out, so the join along the ring runs round the lobe and
+// back, out along one side and in along the other, as a perimeter would.
+struct CellCut {
+  slicer::Region region;
+  bool drop = false;
 };
 
 struct LobeSeams {
-  std::vector<std::vector<slicer::Region>> cells;  // per cell, its slit's variants
-  std::size_t dead_ends = 0;                       // cells[0, dead_ends): at a dead end
+  std::vector<std::vector<CellCut>> cells;  // per cell, its cuts (at least two)
+  std::size_t dead_ends = 0;                // cells[0, dead_ends): at a dead end
 };
 
 // Candidate slits for `pieces` (one scaffold layer's parallel chords, `order` the line

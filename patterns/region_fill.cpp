@@ -7,8 +7,8 @@
 
 #include "patterns/lobe_seams.h"
 #include "patterns/perimeter_splice.h"
-#include "patterns/region_strands.h"
 #include "patterns/region_join.h"
+#include "patterns/region_strands.h"
 #include "slicer/input_error.h"
 
 namespace strand::patterns {
@@ -87,24 +87,40 @@ Joined with_seams(const Region& fill, const LobeSeams& seams, const Over& over, 
   bool fewer = false;  // an attempt with fewer seams than kept: as many strands will do
   const auto attempt = [&](const std::vector<Cut>& cuts) {
     ++tries;
-    Region cut = fill, slits;
+    Region cut = fill, slits, drops;
     for (const auto& [c, v] : cuts) {
-      cut = slicer::region_difference(cut, seams.cells[c][v]);
-      for (auto& part : slicer::offset_region(seams.cells[c][v], 0.01)) slits.push_back(std::move(part));
+      const CellCut& x = seams.cells[c][v];
+      if (x.drop) {
+        drops.insert(drops.end(), x.region.begin(), x.region.end());
+        continue;
+      }
+      cut = slicer::region_difference(cut, x.region);
+      for (auto& part : slicer::offset_region(x.region, 0.01)) slits.push_back(std::move(part));
     }
-    Joined j = join(cut, slits);
-    if (j.strands.size() > best.strands.size() || (j.strands.size() == best.strands.size() && !fewer)) return false;
+    Joined j = join(cut, slits, drops);
+    if (j.strands.size() > best.strands.size() ||
+        (j.strands.size() == best.strands.size() && !fewer))
+      return false;
     best = std::move(j);
     kept = cuts;
     return true;
   };
   const auto more = [&] { return over(best.strands) && tries < kMaxTries; };
   const std::size_t k = seams.dead_ends;
-  for (std::size_t v = 0; v < 2 && more(); ++v) {  // with each of the two whole-cell slits
+  // Each cell's cut in a mode: the first or the second whole-cell slit, or its chords left out
+  // where the cell is narrow enough (else the first slit).
+  const auto pick = [&](std::size_t c, std::size_t mode) -> std::size_t {
+    const auto& cuts = seams.cells[c];
+    if (mode < 2) return mode;
+    return cuts.back().drop ? cuts.size() - 1 : 0;
+  };
+  bool drops = false;  // mode 2 differs from mode 0
+  for (std::size_t c = 0; c < k; ++c) drops = drops || pick(c, 2) != 0;
+  for (std::size_t mode = 0; mode < (drops ? 3 : 2) && more(); ++mode) {
     const auto all_but = [&](std::size_t a, std::size_t b) {
       std::vector<Cut> cuts;
       for (std::size_t c = 0; c < k; ++c) {
-        if (c != a && c != b) cuts.emplace_back(c, v);
+        if (c != a && c != b) cuts.emplace_back(c, pick(c, mode));
       }
       return cuts;
     };
@@ -139,7 +155,8 @@ void drop_stubs(const Region& region, double nozzle_mm, std::vector<slicer::Stro
                 LayerFill& out) {
   std::vector<int> parts;
   std::vector<int> over(region.size(), 0);
-  for (std::size_t i = 0; i < region.size(); ++i) over[i] = -1 - static_cast<int>(region[i].holes.size());
+  for (std::size_t i = 0; i < region.size(); ++i)
+    over[i] = -1 - static_cast<int>(region[i].holes.size());
   for (const auto& s : strands) {
     parts.push_back(part_holding(region, s));
     if (parts.back() >= 0) ++over[static_cast<std::size_t>(parts.back())];
@@ -150,7 +167,9 @@ void drop_stubs(const Region& region, double nozzle_mm, std::vector<slicer::Stro
       const bool open = (strands[i].end_mm() - strands[i].start_mm).norm() > 1e-9;
       if (parts[i] < 0 || over[static_cast<std::size_t>(parts[i])] <= 0 || !open) continue;
       const double len = slicer::stroke_length(strands[i]);
-      if (len < 4.0 * nozzle_mm && (stub == strands.size() || len < slicer::stroke_length(strands[stub]))) stub = i;
+      if (len < 4.0 * nozzle_mm &&
+          (stub == strands.size() || len < slicer::stroke_length(strands[stub])))
+        stub = i;
     }
     if (stub == strands.size()) return;
     out.pattern_length_mm -= slicer::stroke_length(strands[stub]);
@@ -179,19 +198,36 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   // short as half a nozzle (a narrow lobe).
   const double min_half = 0.5 * d;
   const std::vector<PatternLine> lines = pattern_lines(p, layer, half);  // the same for every try
-  const auto join = [&](const Region& fill, const Region& slits) {
+  const auto join = [&](const Region& fill, const Region& slits, const Region& drops) {
     Joined j;
     const RingSet rs = ring_set(slicer::rings_of(fill));
-    for (FillPiece& piece : clip_to_rings(rs, lines)) {
-      const double len = line_length(piece.line);
-      const auto on_slit = [&] {
-        return len >= min_half && (slicer::contains(slits, piece.line.points.front()) ||
-                                   slicer::contains(slits, piece.line.points.back()));
-      };
-      // A corner or a node grazed: a strand of its own otherwise.
-      if (len < p.min_piece_mm && (slits.empty() || !on_slit())) continue;
-      j.pattern_length_mm += len;
-      j.pieces.push_back(std::move(piece));
+    std::vector<FillPiece> clipped = clip_to_rings(rs, lines);
+    std::vector<char> keep(clipped.size(), 0);
+    const auto in_slit = [&](const Vec2& q) {
+      return !slits.empty() && slicer::contains(slits, q);
+    };
+    for (std::size_t i = 0; i < clipped.size(); ++i) {
+      const PatternLine& l = clipped[i].line;
+      const double len = line_length(l);
+      if (!drops.empty() && slicer::contains(drops, (l.points.front() + l.points.back()) / 2.0))
+        continue;
+      // A corner or a node grazed: a strand of its own otherwise. A half chord ending on a
+      // slit may be as short as min_half.
+      keep[i] = len >= p.min_piece_mm ||
+                (len >= min_half && (in_slit(l.points.front()) || in_slit(l.points.back())));
+    }
+    // The two halves of a chord a slit cuts are kept or left out together, so a lobe has as
+    // many half chords on each side of its slit: its there-and-back needs that.
+    for (std::size_t i = 0; i + 1 < clipped.size(); ++i) {
+      const PatternLine &a = clipped[i].line, &b = clipped[i + 1].line;
+      if (keep[i] != keep[i + 1] && a.order == b.order && in_slit(a.points.back()) &&
+          in_slit(b.points.front()))
+        keep[i] = keep[i + 1] = 0;
+    }
+    for (std::size_t i = 0; i < clipped.size(); ++i) {
+      if (!keep[i]) continue;
+      j.pattern_length_mm += line_length(clipped[i].line);
+      j.pieces.push_back(std::move(clipped[i]));
     }
     std::vector<slicer::Stroke> strands = join_pieces(rs, j.pieces, {p.connector, d, h}, inner);
     j.pattern_strands = static_cast<int>(strands.size());
@@ -199,7 +235,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     return j;
   };
   const Region fill = slicer::offset_region(region, -(perimeters + 0.5) * d);
-  Joined best = join(fill, {});
+  Joined best = join(fill, {}, {});
   // More strands than one per region and hole: a scaffold's dead-end lobes get seams.
   // Over the bound in some part (a region's count, as the slice summary takes it: the totals
   // would hide a part with a strand too many beside one with none).
@@ -233,9 +269,11 @@ class PartFillLayers final : public PartFillSource {
 
   LayerFill fill(std::size_t k) const override {
     check_wall(part_.layers, k, p_.nozzle_mm, z_of(k));
-    LayerFill f = fill_layer(part_.layers[k], p_, static_cast<int>(k), part_.perimeters, part_.half_extent_mm);
+    LayerFill f = fill_layer(part_.layers[k], p_, static_cast<int>(k), part_.perimeters,
+                             part_.half_extent_mm);
     if (k < part_.extra_strokes.size())
-      f.strokes.insert(f.strokes.end(), part_.extra_strokes[k].begin(), part_.extra_strokes[k].end());
+      f.strokes.insert(f.strokes.end(), part_.extra_strokes[k].begin(),
+                       part_.extra_strokes[k].end());
     return f;
   }
 
@@ -243,7 +281,8 @@ class PartFillLayers final : public PartFillSource {
 
   slicer::Layer layer_from(std::size_t k, LayerFill f) override {
     slicer::Vec2 at = at_;
-    slicer::Layer layer{z_of(k), p_.layer_height_mm, slicer::nearest_first(std::move(f.strokes), at)};
+    slicer::Layer layer{z_of(k), p_.layer_height_mm,
+                        slicer::nearest_first(std::move(f.strokes), at)};
     if (!layer.strokes.empty()) at_ = layer.strokes.back().end_mm();
     for (const auto& s : layer.strokes) deposited_ += slicer::stroke_length(s);
     pattern_length_ += f.pattern_length_mm;

@@ -6,7 +6,9 @@
 // anchor from 3 to 0, goathead from 4 to 0 and spool from 13 to 3 without perimeters, and
 // leaving out lone stubs in legs too narrow to join them took spool from 13 to 3 with one;
 // judging the bound per part, not on the layer's totals (a part with a strand too many beside a
-// sliver with none), took elephant from 2 to 0 and pinion from 9 to 7 without, 16 to 14 with.
+// sliver with none), took elephant from 2 to 0 and pinion from 9 to 7 without, 16 to 14 with;
+// leaving out the chords of a lobe narrower than a pitch (the joins run round it) and keeping
+// a slit's two half chords together took spool to 0 without and 2 with, pinion to 10 with.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -25,16 +27,21 @@ TEST(SlicePublicMeshes, EachPassesCheckDepositsInEveryLayerAndHoldsTheStrandBoun
     int perimeters;
     int layers_over;  // at most
   };
-  for (const Case& c : {Case{"rotor.off", 1, 5}, Case{"spool.off", 1, 3}, Case{"pinion.off", 1, 14},
-                        Case{"anchor.off", 0, 0}, Case{"goathead.obj", 0, 0}, Case{"spool.off", 0, 3},
-                        Case{"elephant.off", 0, 0}, Case{"pinion.off", 0, 7}}) {
+  for (const Case& c :
+       {Case{"rotor.off", 1, 5}, Case{"spool.off", 1, 2}, Case{"pinion.off", 1, 10},
+        Case{"anchor.off", 0, 0}, Case{"goathead.obj", 0, 0}, Case{"spool.off", 0, 0},
+        Case{"elephant.off", 0, 0}, Case{"pinion.off", 0, 7}}) {
     const std::string& name = c.name;
     const std::string dir = fresh_dir("public-" + name + "-" + std::to_string(c.perimeters));
-    ASSERT_EQ(std::system(("gzip -dc '" + data + name + ".gz' > '" + dir + "/" + name + "'").c_str()), 0);
-    const auto r = run_strand("slice " + name + " --scale-to-fit 30x30x30 --pattern scaffold "
-                              "--nozzle 0.6 --gap 1 --perimeters " + std::to_string(c.perimeters) +
-                              " --machine deltawasp-2040-clay -o part.gcode --report part.json --quiet",
-                              dir);
+    ASSERT_EQ(
+        std::system(("gzip -dc '" + data + name + ".gz' > '" + dir + "/" + name + "'").c_str()), 0);
+    const auto r =
+        run_strand("slice " + name +
+                       " --scale-to-fit 30x30x30 --pattern scaffold "
+                       "--nozzle 0.6 --gap 1 --perimeters " +
+                       std::to_string(c.perimeters) +
+                       " --machine deltawasp-2040-clay -o part.gcode --report part.json --quiet",
+                   dir);
     ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
     const auto check = run_strand("check part.gcode --machine deltawasp-2040-clay", dir);
     EXPECT_EQ(check.exit_code, 0) << name << ":\n" << check.out;
@@ -45,7 +52,8 @@ TEST(SlicePublicMeshes, EachPassesCheckDepositsInEveryLayerAndHoldsTheStrandBoun
     for (const auto& layer : report.at("derived").at("strands_per_region")) {
       bool layer_over = false;
       for (const auto& region : layer) {
-        layer_over = layer_over || region.at("strands").get<int>() > 1 + region.at("holes").get<int>();
+        layer_over =
+            layer_over || region.at("strands").get<int>() > 1 + region.at("holes").get<int>();
       }
       over += layer_over ? 1 : 0;
     }
