@@ -44,4 +44,11 @@ struct LobeSeams {
 LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& pieces,
                      const SeamOptions& options);
 
+// The pieces whose midpoints lie in `drop` (one cell's CellCut with drop set) replaced by one
+// piece along their ring round the lobe, from the first of their ends to the last the way no
+// other piece ends, its feature the first one's: the lobe's edge, out along one side and back
+// along the other, printed as a piece so it cannot be left out. False, `pieces` unchanged,
+// when none lies there, their ends are not all on one ring, or another piece ends among them.
+bool round_lobe(const RingSet& rs, const slicer::Region& drop, std::vector<FillPiece>& pieces);
+
 }  // namespace strand::patterns

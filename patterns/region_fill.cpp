@@ -87,11 +87,12 @@ Joined with_seams(const Region& fill, const LobeSeams& seams, const Over& over, 
   bool fewer = false;  // an attempt with fewer seams than kept: as many strands will do
   const auto attempt = [&](const std::vector<Cut>& cuts) {
     ++tries;
-    Region cut = fill, slits, drops;
+    Region cut = fill, slits;
+    std::vector<const Region*> drops;
     for (const auto& [c, v] : cuts) {
       const CellCut& x = seams.cells[c][v];
       if (x.drop) {
-        drops.insert(drops.end(), x.region.begin(), x.region.end());
+        drops.push_back(&x.region);
         continue;
       }
       cut = slicer::region_difference(cut, x.region);
@@ -198,7 +199,8 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   // short as half a nozzle (a narrow lobe).
   const double min_half = 0.5 * d;
   const std::vector<PatternLine> lines = pattern_lines(p, layer, half);  // the same for every try
-  const auto join = [&](const Region& fill, const Region& slits, const Region& drops) {
+  const auto join = [&](const Region& fill, const Region& slits,
+                        const std::vector<const Region*>& drops) {
     Joined j;
     const RingSet rs = ring_set(slicer::rings_of(fill));
     std::vector<FillPiece> clipped = clip_to_rings(rs, lines);
@@ -209,8 +211,6 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     for (std::size_t i = 0; i < clipped.size(); ++i) {
       const PatternLine& l = clipped[i].line;
       const double len = line_length(l);
-      if (!drops.empty() && slicer::contains(drops, (l.points.front() + l.points.back()) / 2.0))
-        continue;
       // A corner or a node grazed: a strand of its own otherwise. A half chord ending on a
       // slit may be as short as min_half.
       keep[i] = len >= p.min_piece_mm ||
@@ -225,10 +225,11 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
         keep[i] = keep[i + 1] = 0;
     }
     for (std::size_t i = 0; i < clipped.size(); ++i) {
-      if (!keep[i]) continue;
-      j.pattern_length_mm += line_length(clipped[i].line);
-      j.pieces.push_back(std::move(clipped[i]));
+      if (keep[i]) j.pieces.push_back(std::move(clipped[i]));
     }
+    // A lobe whose chords are left out is printed round its edge instead.
+    for (const Region* drop : drops) round_lobe(rs, *drop, j.pieces);
+    for (const FillPiece& piece : j.pieces) j.pattern_length_mm += line_length(piece.line);
     std::vector<slicer::Stroke> strands = join_pieces(rs, j.pieces, {p.connector, d, h}, inner);
     j.pattern_strands = static_cast<int>(strands.size());
     j.strands = splice_loops(inner, std::move(strands), d, out.strokes);

@@ -137,6 +137,43 @@ TEST(LobeSeams, AnHOnTaperingLegsIsOneStrand) {
   }
 }
 
+// Legs narrower than a pitch (their chords too short to halve): their chords are left out
+// instead, and each leg is printed round its edge, out along one side and back the other.
+TEST(LobeSeams, LegsNarrowerThanAPitchAreFilledRoundTheirEdge) {
+  const double leg = 1.8;  // 1.2 mm of fill: a chord of 1.2 mm, shorter than the 1.6 mm pitch
+  const std::vector<double> at{-8.0, -3.0, 2.0, 6.5};
+  std::vector<slicer::Ring> loops{box(-10, 0, 10, 8)};
+  for (const double x0 : at) loops.push_back(box(x0, -10, x0 + leg, 0.5));
+  const slicer::Region region = slicer::region_from_oriented_loops(loops);
+  const slicer::Region fill = slicer::offset_region(region, -0.3);
+  const RegionPattern p = scaffold({12, 20});
+  const RingSet rs = ring_set(slicer::rings_of(fill));
+  std::vector<FillPiece> pieces = clip_to_rings(rs, pattern_lines(p, 0, {12, 20}));
+  const LobeSeams seams = lobe_seams(fill, pieces, {0.6, p.pitch_mm, 0.3});
+  int dropped = 0;
+  for (std::size_t c = 0; c < seams.dead_ends; ++c) {
+    if (!seams.cells[c].front().drop) continue;
+    ++dropped;
+    // One piece round the leg replaces its chords: along both sides and the tip.
+    const std::size_t before = pieces.size();
+    ASSERT_TRUE(round_lobe(rs, seams.cells[c].front().region, pieces));
+    EXPECT_LT(pieces.size(), before);
+  }
+  EXPECT_EQ(dropped, 4);
+  const LayerFill f = fill_layer(region, p, 0, 0, {12, 20});
+  EXPECT_EQ(f.strokes.size(), 1u);
+  EXPECT_EQ(crossings(f.strokes), 0u);
+  // Every leg filled: round its edge (9 mm of it in the box, down and back up), or with its
+  // chords where the strand starts or ends.
+  int round = 0;
+  for (const double x0 : at) {
+    const double len = length_in(f.strokes, box(x0, -10, x0 + leg, -1));
+    EXPECT_GT(len, 0.6 * 9.0 / p.pitch_mm * (leg - 0.6)) << "the leg at x " << x0;
+    round += len > 2 * 8.0 ? 1 : 0;
+  }
+  EXPECT_GE(round, 2);
+}
+
 // The slits: the cells at a dead end come first (the legs, and the body, whose top row
 // has nothing above), each slit inside the fill region away from its boundary, a leg's
 // cutting every chord of the leg.
