@@ -27,6 +27,77 @@ bool continues(const std::vector<Chord>& c, std::size_t i) {
   return c[i].down.size() == 1 && c[c[i].down[0]].up.size() == 1;
 }
 
+// Per pair of dead-end cells (the first `dead` of `cells`), the cells off the path between
+// them through the cells' adjacency (as `out_of` numbers them; cells it leaves out have no
+// cut), longest path first; at most kMaxSpines, of the first 16 dead ends.
+std::vector<std::vector<std::size_t>> spines(const std::vector<Chord>& chords,
+                                             const std::vector<std::vector<std::size_t>>& cells,
+                                             std::size_t dead,
+                                             const std::vector<std::size_t>& out_of) {
+  constexpr std::size_t kMaxSpines = 24;
+  const std::size_t n = cells.size();
+  std::vector<std::size_t> cell_of(chords.size(), n);
+  for (std::size_t c = 0; c < n; ++c) {
+    for (const std::size_t i : cells[c]) cell_of[i] = c;
+  }
+  std::vector<std::vector<std::size_t>> adj(n);
+  for (std::size_t c = 0; c < n; ++c) {
+    for (const std::size_t i : chords[cells[c].back()].down) {
+      const std::size_t d = cell_of[i];
+      if (d == c || d == n) continue;
+      adj[c].push_back(d);
+      adj[d].push_back(c);
+    }
+  }
+  for (auto& a : adj) {
+    std::sort(a.begin(), a.end());
+    a.erase(std::unique(a.begin(), a.end()), a.end());
+  }
+  // Breadth-first from `from`: each cell's predecessor (n: unreached).
+  const auto tree = [&](std::size_t from) {
+    std::vector<std::size_t> pred(n, n);
+    std::vector<std::size_t> queue{from};
+    pred[from] = from;
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      for (const std::size_t d : adj[queue[q]]) {
+        if (pred[d] == n) pred[d] = queue[q], queue.push_back(d);
+      }
+    }
+    return pred;
+  };
+  struct Spine {
+    std::size_t length;
+    std::vector<std::size_t> off;
+  };
+  std::vector<Spine> found;
+  const std::size_t ends = std::min<std::size_t>(dead, 16);
+  for (std::size_t a = 0; a < ends; ++a) {
+    const std::vector<std::size_t> pred = tree(a);
+    for (std::size_t b = a + 1; b < ends; ++b) {
+      if (pred[b] == n) continue;
+      std::vector<bool> on(n, false);
+      std::size_t length = 1;
+      for (std::size_t c = b; c != a; c = pred[c]) on[c] = true, ++length;
+      on[a] = true;
+      Spine spine{length, {}};
+      for (std::size_t c = 0; c < n; ++c) {
+        if (!on[c] && out_of[c] < n) spine.off.push_back(out_of[c]);
+      }
+      std::sort(spine.off.begin(), spine.off.end());
+      found.push_back(std::move(spine));
+    }
+  }
+  std::stable_sort(found.begin(), found.end(),
+                   [](const Spine& x, const Spine& y) { return x.length > y.length; });
+  std::vector<std::vector<std::size_t>> out;
+  for (auto& spine : found) {
+    if (out.size() == kMaxSpines) break;
+    if (std::find(out.begin(), out.end(), spine.off) == out.end())
+      out.push_back(std::move(spine.off));
+  }
+  return out;
+}
+
 }  // namespace
 
 LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& pieces,
@@ -128,6 +199,7 @@ LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& p
     return std::all_of(cell.begin(), cell.end(),
                        [&](std::size_t i) { return chords[i].b - chords[i].a <= o.pitch_mm; });
   };
+  std::vector<std::size_t> out_of(cells.size(), cells.size());  // cell -> out.cells index
   for (auto cell_it = cells.begin(); cell_it != cells.end(); ++cell_it) {
     const auto& cell = *cell_it;
     // The longest run of chords long enough to cut.
@@ -140,6 +212,7 @@ LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& p
     }
     if (best_len == 0) {  // too narrow to halve: the cell's chords are left out instead
       if (!narrow(cell)) continue;
+      out_of[static_cast<std::size_t>(cell_it - cells.begin())] = out.cells.size();
       out.cells.push_back({drop(cell), drop(cell)});
       if (cell_it < first_inner) out.dead_ends = out.cells.size();
       continue;
@@ -148,7 +221,8 @@ LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& p
     double shortest = chords[cell[i0]].b - chords[cell[i0]].a;
     for (std::size_t k = i0; k <= i1; ++k)
       shortest = std::min(shortest, chords[cell[k]].b - chords[cell[k]].a);
-    const double width = std::clamp(shortest - 2.0 * o.min_half_mm, o.nozzle_mm,
+    // The shortest chord's halves a little over min_half, so rounding keeps them.
+    const double width = std::clamp(shortest - 2.0 * o.min_half_mm - 0.1 * o.nozzle_mm, o.nozzle_mm,
                                     std::max(o.nozzle_mm, o.pitch_mm - o.nozzle_mm));
     std::vector<CellCut> variants;
     const auto add = [&](std::size_t a, std::size_t b, const slicer::Region& within) {
@@ -169,9 +243,11 @@ LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& p
     }
     if (i1 > i0 + 1) add(i0 + 1, i1 - 1, inside);
     if (narrow(cell)) variants.push_back(drop(cell));
+    out_of[static_cast<std::size_t>(cell_it - cells.begin())] = out.cells.size();
     out.cells.push_back(std::move(variants));
     if (cell_it < first_inner) out.dead_ends = out.cells.size();
   }
+  out.spines = spines(chords, cells, static_cast<std::size_t>(first_inner - cells.begin()), out_of);
   return out;
 }
 
@@ -192,10 +268,13 @@ bool round_lobe(const RingSet& rs, const slicer::Region& drop, std::vector<FillP
       spots.push_back(e);
     }
   }
-  std::sort(spots.begin(), spots.end(), [](const RingSpot& a, const RingSpot& b) { return a.s_mm < b.s_mm; });
+  std::sort(spots.begin(), spots.end(),
+            [](const RingSpot& a, const RingSpot& b) { return a.s_mm < b.s_mm; });
   // The arc round the lobe leaves out one gap between consecutive ends: the one holding every
   // other piece's end on this ring, or else the longest.
-  const auto ahead = [&](double from, double to) { return to >= from ? to - from : to + len - from; };
+  const auto ahead = [&](double from, double to) {
+    return to >= from ? to - from : to + len - from;
+  };
   std::size_t gap = spots.size();  // the gap after spots[gap]
   double longest = -1.0;
   for (std::size_t k = 0; k < spots.size(); ++k) {
@@ -208,7 +287,8 @@ bool round_lobe(const RingSet& rs, const slicer::Region& drop, std::vector<FillP
         continue;
       }
       for (const RingSpot& e : {pieces[i].start, pieces[i].end}) {
-        holds_all = holds_all && (e.ring != ring || (ahead(a.s_mm, e.s_mm) > 0.0 && ahead(a.s_mm, e.s_mm) < width));
+        holds_all = holds_all && (e.ring != ring ||
+                                  (ahead(a.s_mm, e.s_mm) > 0.0 && ahead(a.s_mm, e.s_mm) < width));
       }
     }
     if (holds_all && width > longest) gap = k, longest = width;
@@ -219,8 +299,9 @@ bool round_lobe(const RingSet& rs, const slicer::Region& drop, std::vector<FillP
   lobe.start = from;
   lobe.end = to;
   lobe.line.order = pieces[in.front()].line.order;
-  const slicer::Feature feature = pieces[in.front()].line.features.empty() ? slicer::Feature::Infill
-                                                                           : pieces[in.front()].line.features.front();
+  const slicer::Feature feature = pieces[in.front()].line.features.empty()
+                                      ? slicer::Feature::Infill
+                                      : pieces[in.front()].line.features.front();
   const auto& ring_pts = rs.rings[static_cast<std::size_t>(ring)];
   const auto& s_at = rs.s_mm[static_cast<std::size_t>(ring)];
   const double span = ahead(from.s_mm, to.s_mm);
@@ -235,7 +316,8 @@ bool round_lobe(const RingSet& rs, const slicer::Region& drop, std::vector<FillP
   lobe.line.points.push_back(point_at(rs, to));
   lobe.line.features.assign(lobe.line.points.size() - 1, feature);
   const std::size_t at = in.front();
-  for (std::size_t k = in.size(); k-- > 0;) pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(in[k]));
+  for (std::size_t k = in.size(); k-- > 0;)
+    pieces.erase(pieces.begin() + static_cast<std::ptrdiff_t>(in[k]));
   pieces.insert(pieces.begin() + static_cast<std::ptrdiff_t>(at), std::move(lobe));
   return true;
 }

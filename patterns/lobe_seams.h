@@ -3,7 +3,8 @@
 // out, so a second lobe beside it becomes a strand of its own. A seam is a slit one gap
 // wide cut down the middle of a lobe's chords, inside the fill boundary: the lobe becomes
 // a ring round it, filled down one half and back up the other ("there and back"), with
-// the joins between the half chords running along the slit's two sides.
+// the joins between the half chords running along the slit's two sides. A lobe narrower
+// than a pitch is printed round its edge instead (its chords left out: round_lobe).
 #pragma once
 
 #include <vector>
@@ -30,6 +31,10 @@ struct CellCut {
 struct LobeSeams {
   std::vector<std::vector<CellCut>> cells;  // per cell, its cuts (at least two)
   std::size_t dead_ends = 0;                // cells[0, dead_ends): at a dead end
+  // Per pair of dead ends, the cells off the path between them (longest path first): with
+  // those cut, one strand may run from one dead end to the other, there and back into every
+  // branch off its way.
+  std::vector<std::vector<std::size_t>> spines;
 };
 
 // Candidate slits for `pieces` (one scaffold layer's parallel chords, `order` the line
@@ -38,9 +43,10 @@ struct LobeSeams {
 // in the rows beside it), each slit as wide as a gap where the cell's chords leave min_half
 // beside it, at least a nozzle. Variants 0 and 1 cut every chord of the cell, kept a tenth
 // and half a nozzle inside the ring (a chord close to the lobe's tip is cut only by the
-// first); then the chords long enough to halve, and those with the first or last left whole.
-// Cells at a dead end (no chord beyond one of their ends) come first, in row order. None when
-// the pieces are not parallel straight chords. Deterministic.
+// first); then the chords long enough to halve, and those with the first or last left whole;
+// last, for a cell whose chords are all at most a pitch long, the drop (a cell too narrow to
+// halve has only that, twice). Cells at a dead end (no chord beyond one of their ends) come first,
+// in row order. None when the pieces are not parallel straight chords. Deterministic.
 LobeSeams lobe_seams(const slicer::Region& fill, const std::vector<FillPiece>& pieces,
                      const SeamOptions& options);
 

@@ -71,16 +71,19 @@ struct Joined {
 };
 
 // `best` (the layer joined without seams, `over` the bound) again with sets of `seams`
-// cut out of `fill` (patterns/lobe_seams.h), `join(cut fill, slits)` joining each try: every
-// dead end at once (a part whose lobes each need one), then all but one or two (a strand may
+// (patterns/lobe_seams.h: slits cut out of `fill`, or a narrow lobe's chords left out and its
+// edge printed), `join(cut fill, slits, drops)` joining each try: first the spines (every cell
+// off the way between two dead ends cut, so one strand runs from one to the other, there and
+// back into each branch), then every dead end at once, then all but one or two (a strand may
 // start or end in a lobe it need not leave; up to 12 and 6 dead ends, past which the choice is
-// too wide to try), then one more cell at a time; a set is kept when it saves a strand. Then
-// each seam kept is dropped again where as many strands do without it (a body cut along with
-// its legs), so the pattern changes no more than it must.
+// too wide to try), each with the first or second whole-cell slit or the drop where a cell has
+// one, then one more cell at a time; a set is kept when it saves a strand and no slit has left
+// its lobe without a half chord. Then each cut kept is dropped again where as many strands do
+// without it (a body cut along with its legs), so the pattern changes no more than it must.
 template <class Join, class Over>
 Joined with_seams(const Region& fill, const LobeSeams& seams, const Over& over, Joined best,
                   const Join& join) {
-  constexpr int kMaxTries = 32;  // joins per layer, bounding the work on a many-lobed part
+  constexpr int kMaxTries = 64;  // joins per layer, bounding the work on a many-lobed part
   int tries = 0;
   using Cut = std::pair<std::size_t, std::size_t>;  // cell, variant
   std::vector<Cut> kept;
@@ -89,6 +92,7 @@ Joined with_seams(const Region& fill, const LobeSeams& seams, const Over& over, 
     ++tries;
     Region cut = fill, slits;
     std::vector<const Region*> drops;
+    std::vector<Region> each;  // each slit, grown
     for (const auto& [c, v] : cuts) {
       const CellCut& x = seams.cells[c][v];
       if (x.drop) {
@@ -96,9 +100,18 @@ Joined with_seams(const Region& fill, const LobeSeams& seams, const Over& over, 
         continue;
       }
       cut = slicer::region_difference(cut, x.region);
-      for (auto& part : slicer::offset_region(x.region, 0.01)) slits.push_back(std::move(part));
+      each.push_back(slicer::offset_region(x.region, 0.01));
+      slits.insert(slits.end(), each.back().begin(), each.back().end());
     }
     Joined j = join(cut, slits, drops);
+    // A slit no half chord ends on has left its lobe empty: no fewer strands are worth that.
+    for (const Region& slit : each) {
+      const bool used = std::any_of(j.pieces.begin(), j.pieces.end(), [&](const FillPiece& piece) {
+        return slicer::contains(slit, piece.line.points.front()) ||
+               slicer::contains(slit, piece.line.points.back());
+      });
+      if (!used) return false;
+    }
     if (j.strands.size() > best.strands.size() ||
         (j.strands.size() == best.strands.size() && !fewer))
       return false;
@@ -115,6 +128,17 @@ Joined with_seams(const Region& fill, const LobeSeams& seams, const Over& over, 
     if (mode < 2) return mode;
     return cuts.back().drop ? cuts.size() - 1 : 0;
   };
+  // Spines first: every cell off the path between two dead ends cut, in each mode.
+  for (const auto& off : seams.spines) {
+    for (std::size_t mode = 0; mode < 3 && more(); ++mode) {
+      if (mode == 2 &&
+          std::none_of(off.begin(), off.end(), [&](std::size_t c) { return pick(c, 2) != 0; }))
+        continue;
+      std::vector<Cut> cuts;
+      for (const std::size_t c : off) cuts.emplace_back(c, pick(c, mode));
+      attempt(cuts);
+    }
+  }
   bool drops = false;  // mode 2 differs from mode 0
   for (std::size_t c = 0; c < k; ++c) drops = drops || pick(c, 2) != 0;
   for (std::size_t mode = 0; mode < (drops ? 3 : 2) && more(); ++mode) {

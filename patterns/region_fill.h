@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "patterns/region_pattern.h"
-#include "slicer/progress_listener.h"
 #include "slicer/layer_source.h"
+#include "slicer/progress_listener.h"
 #include "slicer/region.h"
 #include "slicer/toolpath.h"
 
@@ -19,7 +19,8 @@ struct LayerFill {
   // Outer perimeter levels, then the pattern strands with the innermost perimeter loops
   // spliced into them where a strand ends beside one (patterns/perimeter_splice.h), then
   // the loops left over. A scaffold layer over the strand bound (1 per region + 1 per hole)
-  // gets seams down its dead-end lobes where they save strands (patterns/lobe_seams.h), then
+  // gets seams down its dead-end lobes, or a narrow lobe printed round its edge, where they
+  // save strands (patterns/lobe_seams.h), then
   // leaves out lone stubs shorter than four nozzles in a region still over it.
   std::vector<slicer::Stroke> strokes;
   int regions = 0;                 // connected parts of the layer's region

@@ -174,6 +174,36 @@ TEST(LobeSeams, LegsNarrowerThanAPitchAreFilledRoundTheirEdge) {
   EXPECT_GE(round, 2);
 }
 
+// A body on three legs, the middle one forking into two toes: a strand from one outer leg to
+// the other must go down the middle leg and back up it, so that leg is cut as well as its
+// toes, though it is no dead end (the cells off the path between two dead ends: a spine).
+TEST(LobeSeams, ABranchOffTheWayIsCutWhereverItForks) {
+  const slicer::Region region = slicer::region_from_oriented_loops(
+      {box(-10, 0, 10, 8), box(-10, -10, -6, 0.5), box(6, -10, 10, 0.5), box(-3, -5, 3, 0.5),
+       box(-3, -12, -0.8, -4.5), box(0.8, -12, 3, -4.5)});
+  ASSERT_EQ(region.size(), 1u);
+  const RegionPattern p = scaffold({12, 20});
+  const slicer::Region fill = slicer::offset_region(region, -0.3);
+  const RingSet rs = ring_set(slicer::rings_of(fill));
+  const LobeSeams seams =
+      lobe_seams(fill, clip_to_rings(rs, pattern_lines(p, 0, {12, 20})), {0.6, p.pitch_mm, 0.3});
+  // Some spine leaves a cell that is no dead end off its path.
+  bool inner_off = false;
+  for (const auto& off : seams.spines) {
+    inner_off = inner_off || std::any_of(off.begin(), off.end(),
+                                         [&](std::size_t c) { return c >= seams.dead_ends; });
+  }
+  EXPECT_TRUE(inner_off);
+  const LayerFill f = fill_layer(region, p, 0, 0, {12, 20});
+  EXPECT_EQ(f.strokes.size(), 1u);
+  EXPECT_EQ(crossings(f.strokes), 0u);
+  for (const auto& [x0, x1] :
+       {std::pair{-10.0, -6.0}, std::pair{6.0, 10.0}, std::pair{-3.0, -0.8}, std::pair{0.8, 3.0}}) {
+    EXPECT_GT(length_in(f.strokes, box(x0, -10, x1, -6)), 0.6 * 4.0 / p.pitch_mm * (x1 - x0 - 0.6))
+        << "the leg or toe at x " << x0;
+  }
+}
+
 // The slits: the cells at a dead end come first (the legs, and the body, whose top row
 // has nothing above), each slit inside the fill region away from its boundary, a leg's
 // cutting every chord of the leg.
