@@ -260,7 +260,6 @@ bool round_lobe(const RingSet& rs, const slicer::Region& drop, std::vector<FillP
   if (in.empty()) return false;
   const int ring = pieces[in.front()].start.ring;
   if (ring < 0) return false;
-  const double len = ring_length_mm(rs, ring);
   std::vector<RingSpot> spots;
   for (const std::size_t i : in) {
     for (const RingSpot& e : {pieces[i].start, pieces[i].end}) {
@@ -272,14 +271,11 @@ bool round_lobe(const RingSet& rs, const slicer::Region& drop, std::vector<FillP
             [](const RingSpot& a, const RingSpot& b) { return a.s_mm < b.s_mm; });
   // The arc round the lobe leaves out one gap between consecutive ends: the one holding every
   // other piece's end on this ring, or else the longest.
-  const auto ahead = [&](double from, double to) {
-    return to >= from ? to - from : to + len - from;
-  };
   std::size_t gap = spots.size();  // the gap after spots[gap]
   double longest = -1.0;
   for (std::size_t k = 0; k < spots.size(); ++k) {
     const RingSpot &a = spots[k], &b = spots[(k + 1) % spots.size()];
-    const double width = k + 1 < spots.size() ? b.s_mm - a.s_mm : b.s_mm + len - a.s_mm;
+    const double width = ring_gap(rs, a, b);
     bool holds_all = true;
     for (std::size_t i = 0, j = 0; i < pieces.size() && holds_all; ++i) {
       if (j < in.size() && in[j] == i) {
@@ -287,8 +283,8 @@ bool round_lobe(const RingSet& rs, const slicer::Region& drop, std::vector<FillP
         continue;
       }
       for (const RingSpot& e : {pieces[i].start, pieces[i].end}) {
-        holds_all = holds_all && (e.ring != ring ||
-                                  (ahead(a.s_mm, e.s_mm) > 0.0 && ahead(a.s_mm, e.s_mm) < width));
+        holds_all = holds_all &&
+                    (e.ring != ring || (ring_gap(rs, a, e) > 0.0 && ring_gap(rs, a, e) < width));
       }
     }
     if (holds_all && width > longest) gap = k, longest = width;
@@ -302,18 +298,8 @@ bool round_lobe(const RingSet& rs, const slicer::Region& drop, std::vector<FillP
   const slicer::Feature feature = pieces[in.front()].line.features.empty()
                                       ? slicer::Feature::Infill
                                       : pieces[in.front()].line.features.front();
-  const auto& ring_pts = rs.rings[static_cast<std::size_t>(ring)];
-  const auto& s_at = rs.s_mm[static_cast<std::size_t>(ring)];
-  const double span = ahead(from.s_mm, to.s_mm);
   lobe.line.points.push_back(point_at(rs, from));
-  const std::size_t n = ring_pts.size();
-  for (std::size_t k = 1; k <= n; ++k) {
-    const std::size_t v = (static_cast<std::size_t>(from.edge) + k) % n;
-    const double d = ahead(from.s_mm, s_at[v]);
-    if (d <= 0.0 || d >= span) break;
-    lobe.line.points.push_back(ring_pts[v]);
-  }
-  lobe.line.points.push_back(point_at(rs, to));
+  walk_ring(rs, from, to, true, lobe.line.points);
   lobe.line.features.assign(lobe.line.points.size() - 1, feature);
   const std::size_t at = in.front();
   for (std::size_t k = in.size(); k-- > 0;)

@@ -41,6 +41,11 @@ struct RingSet {
 RingSet ring_set(const std::vector<slicer::Ring>& rings);
 slicer::Vec2 point_at(const RingSet& rs, const RingSpot& spot);
 double ring_length_mm(const RingSet& rs, int ring);
+// Arc length from spot a forward (increasing s) to spot b on the same ring, mm.
+double ring_gap(const RingSet& rs, const RingSpot& a, const RingSpot& b);
+// Ring points strictly between spots a and b walking forward (or backward), then b.
+void walk_ring(const RingSet& rs, const RingSpot& a, const RingSpot& b, bool forward,
+               std::vector<slicer::Vec2>& out);
 
 // The parts of `lines` inside the region bounded by `rs` (even-odd). Points exactly on a
 // ring count consistently on one side (simulation of simplicity), so every piece runs

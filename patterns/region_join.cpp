@@ -19,13 +19,6 @@ struct EndGraph {
   std::vector<double> gap_next;  // ring distance from the vertex forward to next
 };
 
-double ring_gap(const RingSet& rs, const RingSpot& a, const RingSpot& b) {
-  const double len = ring_length_mm(rs, a.ring);
-  double d = b.s_mm - a.s_mm;
-  if (d < 0.0) d += len;
-  return d;
-}
-
 EndGraph end_graph(const RingSet& rs, const std::vector<FillPiece>& pieces) {
   const int n = static_cast<int>(pieces.size()) * 2;
   EndGraph g{std::vector<int>(n, -1), std::vector<int>(n, -1), std::vector<double>(n, 0.0)};
@@ -244,30 +237,6 @@ double join_length(const EndGraph& g, const std::vector<Chain>& chains) {
 
 RingSpot spot_of(const std::vector<FillPiece>& pieces, int v) {
   return v % 2 == 0 ? pieces[v / 2].start : pieces[v / 2].end;
-}
-
-// Ring points strictly between spots a and b walking forward (or backward), then b.
-void walk_ring(const RingSet& rs, const RingSpot& a, const RingSpot& b, bool forward,
-               std::vector<Vec2>& out) {
-  const auto& ring = rs.rings[static_cast<std::size_t>(a.ring)];
-  const int n = static_cast<int>(ring.size());
-  const double gap = forward ? ring_gap(rs, a, b) : ring_gap(rs, b, a);
-  if (gap > 0.0) {
-    // Vertex indices passed: forward from a.edge + 1 to b.edge; backward from a.edge to b.edge + 1.
-    int i = forward ? (a.edge + 1) % n : a.edge;
-    // Walking backward along edge b.edge from its end vertex b.edge + 1 reaches b first.
-    const int stop = forward ? b.edge : (b.edge + 1) % n;
-    const bool same_edge_ahead =
-        forward ? (a.edge == b.edge && a.s_mm <= b.s_mm) : (a.edge == b.edge && a.s_mm >= b.s_mm);
-    if (!same_edge_ahead) {
-      for (int k = 0; k <= n; ++k) {
-        out.push_back(ring[static_cast<std::size_t>(i)]);
-        if (i == stop) break;
-        i = forward ? (i + 1) % n : (i - 1 + n) % n;
-      }
-    }
-  }
-  out.push_back(point_at(rs, b));
 }
 
 slicer::Stroke emit(const RingSet& rs, const std::vector<FillPiece>& pieces, const Chain& c,
