@@ -27,7 +27,8 @@ bool has_material(const slicer::Region& region, double nozzle_mm) {
 
 void SliceLayerStats::add(std::size_t k, const slicer::Region& region, const slicer::Layer& layer) {
   nlohmann::json parts = nlohmann::json::array();
-  for (const patterns::RegionStrands& r : patterns::strands_per_region(region, layer.strokes)) {
+  const slicer::Region parts_seen = patterns::bead_parts(region, nozzle_mm_);
+  for (const patterns::RegionStrands& r : patterns::strands_per_region(parts_seen, layer.strokes)) {
     parts.push_back({{"strands", r.strands}, {"holes", r.holes}});
   }
   per_region_.push_back(std::move(parts));

@@ -9,6 +9,8 @@
 #include <limits>
 #include <optional>
 
+#include "patterns/strand_chains.h"
+
 namespace strand::patterns {
 
 using slicer::Stroke;
@@ -264,7 +266,7 @@ std::vector<Stroke> join_through_loops(const std::vector<Stroke>& loops, const s
     while (root[i] != i) i = root[i] = root[root[i]];
     return i;
   };
-  std::vector<std::array<int, 2>> join_at(strands.size(), {-1, -1});  // per end: the join taken
+  EndJoins join_at(strands.size(), {-1, -1});  // per end: the join taken
   std::vector<Join> joins;
   const double reach = kLinkSlack * gap_mm;
   for (std::size_t l = 0; l < loops.size(); ++l) {
@@ -310,39 +312,21 @@ std::vector<Stroke> join_through_loops(const std::vector<Stroke>& loops, const s
   }
   if (joins.empty()) return strands;
   // Each chain from a strand with a free end: strand, link, round the loop, link, next strand.
-  std::vector<Stroke> out;
-  std::vector<bool> done(strands.size(), false);
-  for (std::size_t first = 0; first < strands.size(); ++first) {
-    if (done[first] || (join_at[first][0] >= 0 && join_at[first][1] >= 0)) continue;
-    Stroke chain;
-    std::size_t s = first;
-    bool forward = join_at[first][0] < 0;  // enter at the free end
-    for (;;) {
-      done[s] = true;
-      const Stroke piece = forward ? strands[s] : slicer::reversed(strands[s]);
-      if (s == first) {
-        chain = piece;
-      } else {
-        chain.segments.push_back(slicer::line_to(piece.start_mm, slicer::Feature::Wall));
-        chain.segments.insert(chain.segments.end(), piece.segments.begin(), piece.segments.end());
-      }
-      const int j = join_at[s][forward ? 1 : 0];
-      if (j < 0) break;
-      const Join& jn = joins[static_cast<std::size_t>(j)];
-      const bool from_a = jn.a.strand == s && jn.a.at_start != forward;
-      const End& exit = from_a ? jn.a : jn.b;
-      const End& entry = from_a ? jn.b : jn.a;
-      const std::vector<Vec2> loop = points_of(loops[jn.loop]);
-      chain.segments.push_back(slicer::line_to(exit.n.at, slicer::Feature::Wall));
-      for (const Vec2& p : long_way(loop, exit.n, entry.n, from_a ? jn.d : -jn.d))
-        chain.segments.push_back(slicer::line_to(p, slicer::Feature::Wall));
-      chain.segments.push_back(slicer::line_to(entry.n.at, slicer::Feature::Wall));
-      s = entry.strand;
-      forward = entry.at_start;
-    }
-    out.push_back(std::move(chain));
-  }
-  return out;
+  const auto bridge = [&](Stroke& chain, std::size_t j, std::size_t s, bool leaves_at_start) {
+    const Join& jn = joins[j];
+    const bool from_a = jn.a.strand == s && jn.a.at_start == leaves_at_start;
+    const End& exit = from_a ? jn.a : jn.b;
+    const End& entry = from_a ? jn.b : jn.a;
+    const std::vector<Vec2> loop = points_of(loops[jn.loop]);
+    chain.segments.push_back(slicer::line_to(exit.n.at, slicer::Feature::Wall));
+    for (const Vec2& p : long_way(loop, exit.n, entry.n, from_a ? jn.d : -jn.d))
+      chain.segments.push_back(slicer::line_to(p, slicer::Feature::Wall));
+    chain.segments.push_back(slicer::line_to(entry.n.at, slicer::Feature::Wall));
+    const Vec2 next = end_of(strands[entry.strand], entry.at_start);
+    chain.segments.push_back(slicer::line_to(next, slicer::Feature::Wall));
+    return std::pair<std::size_t, bool>{entry.strand, entry.at_start};
+  };
+  return chain_strands(strands, join_at, bridge);
 }
 
 }  // namespace

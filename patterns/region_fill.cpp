@@ -2,10 +2,13 @@
 #include "patterns/region_fill.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "patterns/lobe_seams.h"
+#include "patterns/neck_links.h"
 #include "patterns/perimeter_splice.h"
 #include "patterns/region_join.h"
 #include "patterns/region_strands.h"
@@ -17,6 +20,10 @@ using slicer::Region;
 using slicer::Vec2;
 
 namespace {
+
+// The longest link across a neck (nozzles): ends on either side of a neck under three beads
+// wide lie up to about three beads apart.
+constexpr double kNeckReach = 3.0;
 
 // Where a bead centred d/2 inside layer k's boundary cannot reach, over more than
 // 4 nozzle^2, and the layers below and above cover that place too (a wall, not the thin
@@ -50,6 +57,38 @@ slicer::Stroke ring_stroke(const slicer::Ring& ring, double width, double height
   s.start_mm = ring.front();
   for (std::size_t i = 1; i <= ring.size(); ++i)
     s.segments.push_back(slicer::line_to(ring[i % ring.size()], slicer::Feature::Wall));
+  s.width_mm = width;
+  s.height_mm = height;
+  return s;
+}
+
+// A perimeter ring whose two sides lie under half a bead apart on average (twice its area over
+// its length: the offset of a fin about a bead wide, there and back along one line) printed
+// once, as the open line along one side from one end to the other, not as two beads on top of
+// each other. The ends: the vertex farthest from the first, and the one farthest from that.
+std::optional<slicer::Stroke> flat_ring(const slicer::Ring& ring, double width, double height) {
+  const std::size_t n = ring.size();
+  if (n < 3) return std::nullopt;
+  double area2 = 0.0, length = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec2 &a = ring[i], &b = ring[(i + 1) % n];
+    area2 += a.x() * b.y() - b.x() * a.y();
+    length += (b - a).norm();
+  }
+  if (length <= 0.0 || std::abs(area2) / length >= 0.5 * width) return std::nullopt;
+  const auto farthest = [&](std::size_t from) {
+    std::size_t best = from;
+    for (std::size_t i = 0; i < n; ++i)
+      if ((ring[i] - ring[from]).norm() > (ring[best] - ring[from]).norm()) best = i;
+    return best;
+  };
+  const std::size_t i1 = farthest(0), i2 = farthest(i1);
+  slicer::Stroke s;
+  s.start_mm = ring[i1];
+  for (std::size_t i = (i1 + 1) % n;; i = (i + 1) % n) {
+    s.segments.push_back(slicer::line_to(ring[i], slicer::Feature::Wall));
+    if (i == i2) break;
+  }
   s.width_mm = width;
   s.height_mm = height;
   return s;
@@ -175,7 +214,8 @@ Joined with_seams(const Region& fill, const LobeSeams& seams, const Over& over, 
 // A layer still over the bound: an open strand shorter than four nozzles (a stub left in a
 // lobe too narrow to join it) is left out, shortest first, where its region has other
 // strands over its bound, as a lattice's short pieces are: a start and a stop with hardly a
-// bead between them. `out`'s pattern sums lose what is left out.
+// bead between them. A stroke all wall (a thin feature's bead) is kept: it prints a feature.
+// `out`'s pattern sums lose what is left out.
 void drop_stubs(const Region& region, double nozzle_mm, std::vector<slicer::Stroke>& strands,
                 LayerFill& out) {
   std::vector<int> parts;
@@ -190,7 +230,10 @@ void drop_stubs(const Region& region, double nozzle_mm, std::vector<slicer::Stro
     std::size_t stub = strands.size();
     for (std::size_t i = 0; i < strands.size(); ++i) {
       const bool open = (strands[i].end_mm() - strands[i].start_mm).norm() > 1e-9;
-      if (parts[i] < 0 || over[static_cast<std::size_t>(parts[i])] <= 0 || !open) continue;
+      const bool bead =
+          std::all_of(strands[i].segments.begin(), strands[i].segments.end(),
+                      [](const auto& g) { return g.feature == slicer::Feature::Wall; });
+      if (parts[i] < 0 || over[static_cast<std::size_t>(parts[i])] <= 0 || !open || bead) continue;
       const double len = slicer::stroke_length(strands[i]);
       if (len < 4.0 * nozzle_mm &&
           (stub == strands.size() || len < slicer::stroke_length(strands[stub])))
@@ -208,21 +251,36 @@ void drop_stubs(const Region& region, double nozzle_mm, std::vector<slicer::Stro
 }  // namespace
 
 LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, int perimeters,
-                     const Vec2& half) {
+                     const Vec2& half, const std::vector<slicer::Stroke>& beads) {
   LayerFill out;
   out.regions = static_cast<int>(region.size());
-  if (region.empty()) return out;
+  if (region.empty()) {
+    out.strokes = beads;
+    return out;
+  }
   const double d = p.nozzle_mm, h = p.layer_height_mm;
   std::vector<slicer::Stroke> inner;  // the innermost perimeter level, spliced in below
+  // Strokes printed beside the strands, or joined with them on a layer over the bound: flat
+  // perimeter rings, then the thin features' beads.
+  std::vector<slicer::Stroke> loose;
   for (int k = 0; k < perimeters; ++k) {
     for (const auto& ring : slicer::rings_of(slicer::offset_region(region, -(k + 0.5) * d))) {
+      if (auto line = flat_ring(ring, d, h)) {
+        loose.push_back(std::move(*line));
+        continue;
+      }
       (k + 1 == perimeters ? inner : out.strokes).push_back(ring_stroke(ring, d, h));
     }
   }
+  loose.insert(loose.end(), beads.begin(), beads.end());
   // `slits`: seams cut out of `fill`, grown a little; half chords ending on one may be as
   // short as half a nozzle (a narrow lobe).
   const double min_half = 0.5 * d;
   const std::vector<PatternLine> lines = pattern_lines(p, layer, half);  // the same for every try
+  // Only on a layer over the bound: ends linked across necks, loose strokes joined in.
+  bool retry = false;
+  std::vector<slicer::Stroke> others = out.strokes;  // what a link must keep clear of
+  others.insert(others.end(), loose.begin(), loose.end());
   const auto join = [&](const Region& fill, const Region& slits,
                         const std::vector<const Region*>& drops) {
     Joined j;
@@ -256,7 +314,15 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     for (const FillPiece& piece : j.pieces) j.pattern_length_mm += line_length(piece.line);
     std::vector<slicer::Stroke> strands = join_pieces(rs, j.pieces, {p.connector, d, h}, inner);
     j.pattern_strands = static_cast<int>(strands.size());
-    j.strands = splice_loops(inner, std::move(strands), d, out.strokes);
+    if (retry) {
+      strands.insert(strands.end(), loose.begin(), loose.end());
+      std::vector<slicer::Stroke> clear_of = out.strokes;
+      clear_of.insert(clear_of.end(), inner.begin(), inner.end());
+      strands = link_across_necks(std::move(strands), clear_of, region,
+                                  {kNeckReach * d, 0.5 * d, 0.25 * d});
+    }
+    j.strands = splice_loops(inner, std::move(strands), d, retry ? out.strokes : others);
+    if (!retry) j.strands.insert(j.strands.end(), loose.begin(), loose.end());
     return j;
   };
   const Region fill = slicer::offset_region(region, -(perimeters + 0.5) * d);
@@ -264,9 +330,15 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   // More strands than one per region and hole: a scaffold's dead-end lobes get seams.
   // Over the bound in some part (a region's count, as the slice summary takes it: the totals
   // would hide a part with a strand too many beside one with none).
+  const Region parts = bead_parts(region, d);
   const auto over = [&](const std::vector<slicer::Stroke>& strands) {
-    return strands_over_bound(strands_per_region(region, strands)) > 0;
+    return strands_over_bound(strands_per_region(parts, strands)) > 0;
   };
+  if (over(best.strands)) {
+    retry = true;
+    Joined linked = join(fill, {}, {});
+    if (linked.strands.size() < best.strands.size()) best = std::move(linked);
+  }
   if (over(best.strands) && p.lattice.empty()) {
     const LobeSeams seams = lobe_seams(fill, best.pieces, {d, p.pitch_mm, min_half});
     best = with_seams(fill, seams, over, std::move(best), join);
@@ -274,7 +346,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   out.pattern_strands = best.pattern_strands;
   out.pattern_length_mm = best.pattern_length_mm;
   std::vector<slicer::Stroke>& strands = best.strands;
-  if (over(strands)) drop_stubs(region, d, strands, out);
+  if (over(strands)) drop_stubs(parts, d, strands, out);
   out.strokes.insert(out.strokes.end(), strands.begin(), strands.end());
   return out;
 }
@@ -294,12 +366,10 @@ class PartFillLayers final : public PartFillSource {
 
   LayerFill fill(std::size_t k) const override {
     check_wall(part_.layers, k, p_.nozzle_mm, z_of(k));
-    LayerFill f = fill_layer(part_.layers[k], p_, static_cast<int>(k), part_.perimeters,
-                             part_.half_extent_mm);
-    if (k < part_.extra_strokes.size())
-      f.strokes.insert(f.strokes.end(), part_.extra_strokes[k].begin(),
-                       part_.extra_strokes[k].end());
-    return f;
+    static const std::vector<slicer::Stroke> kNone;
+    return fill_layer(part_.layers[k], p_, static_cast<int>(k), part_.perimeters,
+                      part_.half_extent_mm,
+                      k < part_.extra_strokes.size() ? part_.extra_strokes[k] : kNone);
   }
 
   const Region& region(std::size_t k) const override { return part_.layers.at(k); }

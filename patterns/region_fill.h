@@ -28,8 +28,11 @@ struct LayerFill {
   double pattern_length_mm = 0.0;  // pattern pieces alone, joins excluded
 };
 
+// `beads`: thin features' centre lines (patterns/thin_feature.h), printed as they are after
+// the strands, or on a layer over the bound joined with them through the perimeter loops.
 LayerFill fill_layer(const slicer::Region& region, const RegionPattern& p, int layer,
-                     int perimeters, const slicer::Vec2& half_extent_mm);
+                     int perimeters, const slicer::Vec2& half_extent_mm,
+                     const std::vector<slicer::Stroke>& beads = {});
 
 struct PartFill {
   std::vector<slicer::Region> layers;  // layer k's region, layer k at z = (k + 1) h

@@ -15,6 +15,11 @@ void add_points(const slicer::Stroke& s, std::vector<slicer::Vec2>& out) {
 
 }  // namespace
 
+slicer::Region bead_parts(const slicer::Region& region, double nozzle_mm) {
+  const double r = nozzle_mm / 4.0;
+  return slicer::offset_region(slicer::offset_region(region, -r), r);
+}
+
 // Nine samples are plenty: a strand stays in its region but for the ends of a perimeter
 // hugging its boundary.
 int part_holding(const slicer::Region& region, const std::vector<slicer::Vec2>& points) {

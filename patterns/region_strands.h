@@ -15,6 +15,11 @@ struct RegionStrands {
   bool operator==(const RegionStrands&) const = default;
 };
 
+// `region` as a bead sees it: opened by a quarter nozzle, so a neck or a wall narrower than
+// half a bead (which no bead prints: the thin-feature rule) no longer joins two parts or
+// closes a hole. The bound counts these parts and holes.
+slicer::Region bead_parts(const slicer::Region& region, double nozzle_mm);
+
 // The part of `region` holding most of (at most 9) points spread along `points`; -1 when
 // none holds any.
 int part_holding(const slicer::Region& region, const std::vector<slicer::Vec2>& points);

@@ -10,13 +10,12 @@
 #include "patterns/region_fill.h"
 #include "patterns/region_strands.h"
 #include "patterns/registry.h"
-#include "postprocess/inspect/crossings.h"
+#include "tests/support/stroke_crossings.h"
 
 namespace strand::patterns {
 namespace {
 
 using slicer::Vec2;
-using slicer::Vec3;
 
 slicer::Ring box(double x0, double y0, double x1, double y1) {
   return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
@@ -39,21 +38,7 @@ RegionPattern scaffold(const Vec2& half) {
 }
 
 std::size_t crossings(const std::vector<slicer::Stroke>& strokes) {
-  slicer::MotionProgram program;
-  program.layers.push_back({0.5, 0.5});
-  for (const slicer::Stroke& s : strokes) {
-    slicer::Move travel;
-    travel.end_mm = Vec3(s.start_mm.x(), s.start_mm.y(), 0.5);
-    program.moves.push_back(travel);
-    for (const auto& seg : s.segments) {
-      slicer::Move mv = travel;
-      mv.kind = slicer::MoveKind::Deposit;
-      mv.end_mm = Vec3(seg.end_mm.x(), seg.end_mm.y(), 0.5);
-      mv.width_mm = s.width_mm;
-      program.moves.push_back(mv);
-    }
-  }
-  return post::find_contacts(program, 0.01, 1e-3).crossings.size();
+  return testing::layer_crossings(strokes);
 }
 
 // Deposited length inside the box (segment midpoints), mm.
