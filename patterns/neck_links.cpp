@@ -23,34 +23,43 @@ struct Link {
 
 Vec2 end_of(const Stroke& s, bool at_start) { return at_start ? s.start_mm : s.end_mm(); }
 
-double segment_distance(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2) {
-  if (slicer::segment_contact(p1, p2, q1, q2, 1e-12) == slicer::Contact::Crossing) return 0.0;
-  return std::min(
-      {slicer::point_segment_distance(p1, q1, q2), slicer::point_segment_distance(p2, q1, q2),
-       slicer::point_segment_distance(q1, p1, p2), slicer::point_segment_distance(q2, p1, p2)});
+// Whether segments p1-p2 and q1-q2 come closer than `clear` (boxes first: most are far).
+bool closer_than(const Vec2& p1, const Vec2& p2, const Vec2& q1, const Vec2& q2, double clear) {
+  if (std::max(q1.x(), q2.x()) < std::min(p1.x(), p2.x()) - clear ||
+      std::min(q1.x(), q2.x()) > std::max(p1.x(), p2.x()) + clear ||
+      std::max(q1.y(), q2.y()) < std::min(p1.y(), p2.y()) - clear ||
+      std::min(q1.y(), q2.y()) > std::max(p1.y(), p2.y()) + clear)
+    return false;
+  if (slicer::segment_contact(p1, p2, q1, q2, 1e-12) == slicer::Contact::Crossing) return true;
+  return std::min({slicer::point_segment_distance(p1, q1, q2),
+                   slicer::point_segment_distance(p2, q1, q2),
+                   slicer::point_segment_distance(q1, p1, p2),
+                   slicer::point_segment_distance(q2, p1, p2)}) < clear;
 }
 
 // Every segment of `s` at least `clear` from p-q. When the link leaves from one of s's ends
 // (`own` 0: its start, 1: its end), the segments within `clear` of that end along s are not
 // counted: they lead to the link.
 bool stroke_clear(const Stroke& s, const Vec2& p, const Vec2& q, double clear, int own = -1) {
-  std::vector<Vec2> pts{s.start_mm};
-  for (const auto& seg : s.segments) pts.push_back(seg.end_mm);
-  if (own == 1) std::reverse(pts.begin(), pts.end());
-  double along = 0.0;  // from the linked end, when own >= 0
-  for (std::size_t i = 0; i + 1 < pts.size(); ++i) {
-    const bool lead = own >= 0 && along < clear;
-    along += (pts[i + 1] - pts[i]).norm();
-    if (!lead && segment_distance(p, q, pts[i], pts[i + 1]) < clear) return false;
+  const double total = own == 1 ? slicer::stroke_length(s) : 0.0;
+  double along = 0.0;  // from the start to the segment's start
+  Vec2 from = s.start_mm;
+  for (const auto& seg : s.segments) {
+    const double len = (seg.end_mm - from).norm();
+    const bool lead = (own == 0 && along < clear) || (own == 1 && total - along - len < clear);
+    if (!lead && closer_than(p, q, from, seg.end_mm, clear)) return false;
+    along += len;
+    from = seg.end_mm;
   }
   return true;
 }
 
-bool inside(const slicer::Region& region, const Vec2& p, const Vec2& q, double clear) {
+bool inside(const slicer::Region& region, const std::vector<slicer::Ring>& rings, const Vec2& p,
+            const Vec2& q, double clear) {
   if (!slicer::contains(region, (p + q) / 2.0)) return false;
-  for (const auto& ring : slicer::rings_of(region)) {
+  for (const auto& ring : rings) {
     for (std::size_t i = 0; i < ring.size(); ++i) {
-      if (segment_distance(p, q, ring[i], ring[(i + 1) % ring.size()]) < clear) return false;
+      if (closer_than(p, q, ring[i], ring[(i + 1) % ring.size()], clear)) return false;
     }
   }
   return true;
@@ -73,6 +82,7 @@ std::vector<Stroke> link_across_necks(std::vector<Stroke> strands,
     }
   }
   if (links.empty()) return strands;
+  const std::vector<slicer::Ring> rings = slicer::rings_of(region);
   std::stable_sort(links.begin(), links.end(),
                    [](const Link& x, const Link& y) { return x.length < y.length; });
   std::vector<std::size_t> root(strands.size());
@@ -90,7 +100,7 @@ std::vector<Stroke> link_across_necks(std::vector<Stroke> strands,
         link_at[l.b][l.b_start ? 0 : 1] >= 0)
       continue;
     const Vec2 p = end_of(strands[l.a], l.a_start), q = end_of(strands[l.b], l.b_start);
-    bool clear = inside(region, p, q, o.edge_mm);
+    bool clear = inside(region, rings, p, q, o.edge_mm);
     for (std::size_t s = 0; clear && s < strands.size(); ++s) {
       const int own = s == l.a ? (l.a_start ? 0 : 1) : s == l.b ? (l.b_start ? 0 : 1) : -1;
       clear = stroke_clear(strands[s], p, q, o.clearance_mm, own);

@@ -330,9 +330,16 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   // More strands than one per region and hole: a scaffold's dead-end lobes get seams.
   // Over the bound in some part (a region's count, as the slice summary takes it: the totals
   // would hide a part with a strand too many beside one with none).
-  const Region parts = bead_parts(region, d);
+  // The parts as a bead sees them, opened only when needed: a layer within the bound as
+  // sliced, with no hole, is within it so too (opening only splits parts or drops slivers).
+  const bool holes =
+      std::any_of(region.begin(), region.end(), [](const auto& r) { return !r.holes.empty(); });
+  std::optional<Region> parts;
   const auto over = [&](const std::vector<slicer::Stroke>& strands) {
-    return strands_over_bound(strands_per_region(parts, strands)) > 0;
+    if (!parts && !holes && strands_over_bound(strands_per_region(region, strands)) == 0)
+      return false;
+    if (!parts) parts = bead_parts(region, d);
+    return strands_over_bound(strands_per_region(*parts, strands)) > 0;
   };
   if (over(best.strands)) {
     retry = true;
@@ -346,7 +353,7 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   out.pattern_strands = best.pattern_strands;
   out.pattern_length_mm = best.pattern_length_mm;
   std::vector<slicer::Stroke>& strands = best.strands;
-  if (over(strands)) drop_stubs(parts, d, strands, out);
+  if (over(strands)) drop_stubs(*parts, d, strands, out);
   out.strokes.insert(out.strokes.end(), strands.begin(), strands.end());
   return out;
 }

@@ -15,9 +15,21 @@ void add_points(const slicer::Stroke& s, std::vector<slicer::Vec2>& out) {
 
 }  // namespace
 
+// When every part shrunk by a quarter nozzle is still one part with as many holes, growing it
+// back changes no part and no hole (the opening lies inside the region, and a hole of the
+// shrunk part holds the region's own): the region stands for its opening, one offset saved.
 slicer::Region bead_parts(const slicer::Region& region, double nozzle_mm) {
   const double r = nozzle_mm / 4.0;
-  return slicer::offset_region(slicer::offset_region(region, -r), r);
+  const slicer::Region shrunk = slicer::offset_region(region, -r);
+  bool same = shrunk.size() == region.size();
+  std::vector<bool> hit(region.size(), false);
+  for (std::size_t i = 0; same && i < shrunk.size(); ++i) {
+    std::size_t k = 0;
+    while (k < region.size() && !slicer::contains({region[k]}, shrunk[i].outer.front())) ++k;
+    same = k < region.size() && !hit[k] && shrunk[i].holes.size() == region[k].holes.size();
+    if (same) hit[k] = true;
+  }
+  return same ? region : slicer::offset_region(shrunk, r);
 }
 
 // Nine samples are plenty: a strand stays in its region but for the ends of a perimeter

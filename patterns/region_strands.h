@@ -17,7 +17,8 @@ struct RegionStrands {
 
 // `region` as a bead sees it: opened by a quarter nozzle, so a neck or a wall narrower than
 // half a bead (which no bead prints: the thin-feature rule) no longer joins two parts or
-// closes a hole. The bound counts these parts and holes.
+// closes a hole. The bound counts these parts and holes. `region` itself where the opening
+// changes no part or hole.
 slicer::Region bead_parts(const slicer::Region& region, double nozzle_mm);
 
 // The part of `region` holding most of (at most 9) points spread along `points`; -1 when
