@@ -260,27 +260,26 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   }
   const double d = p.nozzle_mm, h = p.layer_height_mm;
   std::vector<slicer::Stroke> inner;  // the innermost perimeter level, spliced in below
-  // Strokes printed beside the strands, or joined with them on a layer over the bound: flat
-  // perimeter rings, then the thin features' beads.
-  std::vector<slicer::Stroke> loose;
+  // Flat perimeter rings, as open lines: joined with the strands as pattern strands are.
+  std::vector<slicer::Stroke> flats;
   for (int k = 0; k < perimeters; ++k) {
     for (const auto& ring : slicer::rings_of(slicer::offset_region(region, -(k + 0.5) * d))) {
       if (auto line = flat_ring(ring, d, h)) {
-        loose.push_back(std::move(*line));
+        flats.push_back(std::move(*line));
         continue;
       }
       (k + 1 == perimeters ? inner : out.strokes).push_back(ring_stroke(ring, d, h));
     }
   }
-  loose.insert(loose.end(), beads.begin(), beads.end());
   // `slits`: seams cut out of `fill`, grown a little; half chords ending on one may be as
   // short as half a nozzle (a narrow lobe).
   const double min_half = 0.5 * d;
   const std::vector<PatternLine> lines = pattern_lines(p, layer, half);  // the same for every try
-  // Only on a layer over the bound: ends linked across necks, loose strokes joined in.
+  // Only on a layer over the bound: ends linked across necks, thin beads joined in too (else
+  // printed beside the strands, as they are).
   bool retry = false;
   std::vector<slicer::Stroke> others = out.strokes;  // what a link must keep clear of
-  others.insert(others.end(), loose.begin(), loose.end());
+  others.insert(others.end(), beads.begin(), beads.end());
   const auto join = [&](const Region& fill, const Region& slits,
                         const std::vector<const Region*>& drops) {
     Joined j;
@@ -314,15 +313,16 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     for (const FillPiece& piece : j.pieces) j.pattern_length_mm += line_length(piece.line);
     std::vector<slicer::Stroke> strands = join_pieces(rs, j.pieces, {p.connector, d, h}, inner);
     j.pattern_strands = static_cast<int>(strands.size());
+    strands.insert(strands.end(), flats.begin(), flats.end());
     if (retry) {
-      strands.insert(strands.end(), loose.begin(), loose.end());
+      strands.insert(strands.end(), beads.begin(), beads.end());
       std::vector<slicer::Stroke> clear_of = out.strokes;
       clear_of.insert(clear_of.end(), inner.begin(), inner.end());
       strands = link_across_necks(std::move(strands), clear_of, region,
                                   {kNeckReach * d, 0.5 * d, 0.25 * d});
     }
     j.strands = splice_loops(inner, std::move(strands), d, retry ? out.strokes : others);
-    if (!retry) j.strands.insert(j.strands.end(), loose.begin(), loose.end());
+    if (!retry) j.strands.insert(j.strands.end(), beads.begin(), beads.end());
     return j;
   };
   const Region fill = slicer::offset_region(region, -(perimeters + 0.5) * d);
