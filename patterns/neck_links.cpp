@@ -72,7 +72,7 @@ std::vector<Stroke> link_across_necks(std::vector<Stroke> strands,
                                       const slicer::Region& region, const NeckLinkOptions& o) {
   std::vector<Link> links;
   for (std::size_t a = 0; a < strands.size(); ++a) {
-    for (std::size_t b = a + 1; b < strands.size(); ++b) {
+    for (std::size_t b = std::max(a + 1, o.from); b < strands.size(); ++b) {
       for (const bool as : {true, false}) {
         for (const bool bs : {true, false}) {
           const double len = (end_of(strands[a], as) - end_of(strands[b], bs)).norm();

@@ -6,6 +6,7 @@
 // the pieces of a fin's flat perimeter where the fin narrows under a bead.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "slicer/region.h"
@@ -17,6 +18,7 @@ struct NeckLinkOptions {
   double reach_mm = 0.0;      // the longest link
   double clearance_mm = 0.0;  // from every other bead's centre line
   double edge_mm = 0.0;       // from the part's edge
+  std::size_t from = 0;       // a link joins at least one strand at or after this index
 };
 
 // `strands` with pairs of ends of different strands joined by straight links, shortest first,

@@ -65,7 +65,8 @@ slicer::Stroke ring_stroke(const slicer::Ring& ring, double width, double height
 // A perimeter ring whose two sides lie under half a bead apart on average (twice its area over
 // its length: the offset of a fin about a bead wide, there and back along one line) printed
 // once, as the open line along one side from one end to the other, not as two beads on top of
-// each other. The ends: the vertex farthest from the first, and the one farthest from that.
+// each other. The ends: the vertex farthest from the first, and the one farthest from that,
+// at least a nozzle apart (a smaller ring, a dot in a corner, stays a loop).
 std::optional<slicer::Stroke> flat_ring(const slicer::Ring& ring, double width, double height) {
   const std::size_t n = ring.size();
   if (n < 3) return std::nullopt;
@@ -83,6 +84,7 @@ std::optional<slicer::Stroke> flat_ring(const slicer::Ring& ring, double width, 
     return best;
   };
   const std::size_t i1 = farthest(0), i2 = farthest(i1);
+  if ((ring[i2] - ring[i1]).norm() < width) return std::nullopt;  // a dot: a loop joins better
   slicer::Stroke s;
   s.start_mm = ring[i1];
   for (std::size_t i = (i1 + 1) % n;; i = (i + 1) % n) {
@@ -313,13 +315,16 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     for (const FillPiece& piece : j.pieces) j.pattern_length_mm += line_length(piece.line);
     std::vector<slicer::Stroke> strands = join_pieces(rs, j.pieces, {p.connector, d, h}, inner);
     j.pattern_strands = static_cast<int>(strands.size());
+    // On a layer within the bound only a flat perimeter's line is linked (to anything).
+    const std::size_t from = retry ? 0 : strands.size();
     strands.insert(strands.end(), flats.begin(), flats.end());
-    if (retry) {
-      strands.insert(strands.end(), beads.begin(), beads.end());
+    if (retry) strands.insert(strands.end(), beads.begin(), beads.end());
+    if (retry || !flats.empty()) {
       std::vector<slicer::Stroke> clear_of = out.strokes;
       clear_of.insert(clear_of.end(), inner.begin(), inner.end());
+      if (!retry) clear_of.insert(clear_of.end(), beads.begin(), beads.end());
       strands = link_across_necks(std::move(strands), clear_of, region,
-                                  {kNeckReach * d, 0.5 * d, 0.25 * d});
+                                  {kNeckReach * d, 0.5 * d, 0.25 * d, from});
     }
     j.strands = splice_loops(inner, std::move(strands), d, retry ? out.strokes : others);
     if (!retry) j.strands.insert(j.strands.end(), beads.begin(), beads.end());
