@@ -70,13 +70,10 @@ slicer::Stroke ring_stroke(const slicer::Ring& ring, double width, double height
 std::optional<slicer::Stroke> flat_ring(const slicer::Ring& ring, double width, double height) {
   const std::size_t n = ring.size();
   if (n < 3) return std::nullopt;
-  double area2 = 0.0, length = 0.0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const Vec2 &a = ring[i], &b = ring[(i + 1) % n];
-    area2 += a.x() * b.y() - b.x() * a.y();
-    length += (b - a).norm();
-  }
-  if (length <= 0.0 || std::abs(area2) / length >= 0.5 * width) return std::nullopt;
+  double length = 0.0;
+  for (std::size_t i = 0; i < n; ++i) length += (ring[(i + 1) % n] - ring[i]).norm();
+  if (length <= 0.0 || 2.0 * std::abs(slicer::signed_area_mm2(ring)) / length >= 0.5 * width)
+    return std::nullopt;
   const auto farthest = [&](std::size_t from) {
     std::size_t best = from;
     for (std::size_t i = 0; i < n; ++i)
@@ -280,8 +277,14 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
   // Only on a layer over the bound: ends linked across necks, thin beads joined in too (else
   // printed beside the strands, as they are).
   bool retry = false;
-  std::vector<slicer::Stroke> others = out.strokes;  // what a link must keep clear of
-  others.insert(others.end(), beads.begin(), beads.end());
+  // What links keep clear of, gathered once for every try: a splice the outer perimeters and
+  // beads (its loops are its own), a neck link the loops too; on a retry the beads are strands.
+  std::vector<slicer::Stroke> walls = out.strokes;
+  walls.insert(walls.end(), beads.begin(), beads.end());
+  std::vector<slicer::Stroke> loops_over = out.strokes;
+  loops_over.insert(loops_over.end(), inner.begin(), inner.end());
+  std::vector<slicer::Stroke> loops_within = loops_over;
+  loops_within.insert(loops_within.end(), beads.begin(), beads.end());
   const auto join = [&](const Region& fill, const Region& slits,
                         const std::vector<const Region*>& drops) {
     Joined j;
@@ -320,13 +323,10 @@ LayerFill fill_layer(const Region& region, const RegionPattern& p, int layer, in
     strands.insert(strands.end(), flats.begin(), flats.end());
     if (retry) strands.insert(strands.end(), beads.begin(), beads.end());
     if (retry || !flats.empty()) {
-      std::vector<slicer::Stroke> clear_of = out.strokes;
-      clear_of.insert(clear_of.end(), inner.begin(), inner.end());
-      if (!retry) clear_of.insert(clear_of.end(), beads.begin(), beads.end());
-      strands = link_across_necks(std::move(strands), clear_of, region,
+      strands = link_across_necks(std::move(strands), retry ? loops_over : loops_within, region,
                                   {kNeckReach * d, 0.5 * d, 0.25 * d, from});
     }
-    j.strands = splice_loops(inner, std::move(strands), d, retry ? out.strokes : others);
+    j.strands = splice_loops(inner, std::move(strands), d, retry ? out.strokes : walls);
     if (!retry) j.strands.insert(j.strands.end(), beads.begin(), beads.end());
     return j;
   };
